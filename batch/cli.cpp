@@ -1,0 +1,104 @@
+// The `storey` command line: the only file that includes CLI11 (slow to
+// compile). It parses options into the structs of commands.h and calls the
+// command functions; every storey::Error ends as one line on stderr and exit 1.
+#include <CLI/CLI.hpp>
+#include <cstdlib>
+#include <exception>
+#include <iostream>
+
+#include "commands.h"
+#include "common/error.h"
+
+namespace {
+
+void addCommonOptions(CLI::App& cmd, storey::cli::CommonOptions& common) {
+  cmd.add_option("-c,--config", common.config_path,
+                 "configuration file (YAML); default: built-in defaults, see "
+                 "resources/config/default.yaml");
+  cmd.add_option("--calibration", common.calibration_path,
+                 "sensor calibration file (T_imu_lidar, time offset, IMU noise), format of "
+                 "docs/formats.md");
+  cmd.add_option("--points-topic", common.points_topic, "point cloud topic (default: auto-detect)");
+  cmd.add_option("--imu-topic", common.imu_topic, "IMU topic (default: auto-detect)");
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  using namespace storey::cli;
+  CLI::App app{
+      "Storey: LiDAR-inertial SLAM for multi-storey buildings. A log in, one registered point "
+      "cloud split into storeys out.",
+      "storey"};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", "storey 0.1.0");
+
+  RunOptions run;
+  auto* run_cmd = app.add_subcommand(
+      "run", "map a log (ROS1 bag); without LOG the built-in simulated building is mapped");
+  run_cmd->add_option("LOG", run.log_path, "input log (ROS1 bag)");
+  run_cmd->add_option("-o,--out", run.out_dir, "output folder")->capture_default_str();
+  run_cmd->add_flag("--no-srp", run.no_srp, "switch the SRP back end off (odometry only)");
+  addCommonOptions(*run_cmd, run.common);
+
+  InfoOptions info;
+  auto* info_cmd = app.add_subcommand(
+      "info", "describe a log: topics, types, counts, rates, durations, point fields");
+  info_cmd->add_option("LOG", info.log_path, "input log")->required();
+  addCommonOptions(*info_cmd, info.common);
+
+  SimulateOptions simulate;
+  auto* sim_cmd = app.add_subcommand(
+      "simulate", "simulate a multi-storey building walk: ROS1 bag (VLP-16 + IMU) with ground truth");
+  sim_cmd->add_option("BUILDING", simulate.preset_or_spec,
+                      "preset (tiny, default, building-a, building-b) or building spec YAML")
+      ->capture_default_str();
+  sim_cmd->add_option("-o,--out", simulate.out_dir, "output folder")->required();
+  sim_cmd->add_option("--seed", simulate.seed, "random seed (default: the spec's)");
+  sim_cmd->add_option("--range-noise", simulate.range_noise, "LiDAR range noise sigma [m]");
+  sim_cmd->add_option("--imu-rate", simulate.imu_rate_hz, "IMU rate [Hz]");
+  bool no_progress = false;
+  sim_cmd->add_flag("--no-progress", no_progress, "no progress bar");
+
+  EvalOptions eval;
+  auto* eval_cmd = app.add_subcommand(
+      "eval", "compare an estimated trajectory with ground truth (ATE, RPE, end-point drift)");
+  eval_cmd->add_option("--gt", eval.gt_path, "ground-truth trajectory (TUM)")->required();
+  eval_cmd->add_option("--est", eval.est_path, "estimated trajectory (TUM)")->required();
+  eval_cmd->add_option("--mesh", eval.mesh_path, "true building mesh (PLY)");
+  eval_cmd->add_option("--map", eval.map_path, "registered map (PLY)");
+  eval_cmd->add_option("--storeys", eval.storeys_path, "true storey elevations (YAML)");
+
+  RenderOptions render;
+  auto* render_cmd =
+      app.add_subcommand("render", "write PNG renders of a `storey run` output folder, off-screen");
+  render_cmd->add_option("OUTDIR", render.out_dir, "output folder of storey run")->required();
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);
+    return code == 0 ? 0 : 1;
+  }
+
+  try {
+    if (*run_cmd) return runRun(run);
+    if (*info_cmd) return runInfo(info);
+    if (*sim_cmd) {
+      simulate.progress = !no_progress;
+      return runSimulate(simulate);
+    }
+    if (*eval_cmd) return runEval(eval);
+    if (*render_cmd) return runRender(render);
+  } catch (const storey::Cancelled& e) {
+    std::cerr << "storey: " << e.what() << '\n';
+    return 1;
+  } catch (const storey::Error& e) {
+    std::cerr << "storey: error: " << e.what() << '\n';
+    return 1;
+  } catch (const std::exception& e) {
+    std::cerr << "storey: internal error: " << e.what() << '\n';
+    return 1;
+  }
+  return 1;
+}

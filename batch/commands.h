@@ -1,0 +1,54 @@
+#pragma once
+/// Options and entry points of the `storey` subcommands. Parsing lives in
+/// cli.cpp (the one file that includes CLI11); each command's body in its own
+/// file, calling core. Every function returns the process exit status and
+/// lets storey::Error escape (cli.cpp prints it and returns 1).
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace storey::cli {
+
+struct CommonOptions {
+  std::string config_path;       ///< -c/--config; empty = built-in defaults
+  std::string calibration_path;  ///< --calibration; empty = none
+  std::string points_topic;      ///< --points-topic override
+  std::string imu_topic;         ///< --imu-topic override
+};
+
+struct RunOptions {
+  CommonOptions common;
+  std::string log_path;  ///< empty = simulate the built-in default building
+  std::string out_dir = "storey_out";
+  bool no_srp = false;
+};
+
+struct InfoOptions {
+  CommonOptions common;
+  std::string log_path;
+};
+
+struct SimulateOptions {
+  std::string preset_or_spec = "default";  ///< preset name or path to a building YAML
+  std::string out_dir;
+  std::optional<std::uint64_t> seed;
+  std::optional<double> range_noise;  ///< [m]
+  std::optional<double> imu_rate_hz;  ///< [Hz]
+  bool progress = true;
+};
+
+struct EvalOptions {
+  std::string gt_path, est_path, mesh_path, map_path, storeys_path;
+};
+
+struct RenderOptions {
+  std::string out_dir;
+};
+
+int runRun(const RunOptions& options);
+int runInfo(const InfoOptions& options);
+int runSimulate(const SimulateOptions& options);
+int runEval(const EvalOptions& options);
+int runRender(const RenderOptions& options);
+
+}  // namespace storey::cli

@@ -1,0 +1,61 @@
+#pragma once
+/// Every parameter of the pipeline, one plain struct per stage with its
+/// defaults in the struct and units beside each field. The YAML file
+/// (resources/config/default.yaml), the CLI and the plugin only fill these.
+#include <string>
+
+#include "types/pose.h"
+
+namespace storey {
+
+/// LiDAR models known to the readers (ring elevations, firing timing).
+enum class LidarModel { kVlp16, kHdl32e, kOs1_64, kGeneric };
+const char* toString(LidarModel model);
+/// Parses "VLP-16", "HDL-32E", "OS1-64", "generic"; throws storey::Error otherwise.
+LidarModel lidarModelFromString(const std::string& name);
+
+/// Noise model of the IMU (continuous-time densities, as on datasheets).
+struct ImuNoise {
+  double rate_hz = 400.0;                ///< nominal sample rate [Hz], (0, 10000]
+  double gyro_noise_density = 1.75e-4;   ///< [rad/s/sqrt(Hz)]
+  double accel_noise_density = 5.9e-4;   ///< [m/s^2/sqrt(Hz)]
+  double gyro_random_walk = 1.0e-5;      ///< gyro bias random walk [rad/s^2/sqrt(Hz)]
+  double accel_random_walk = 1.0e-4;     ///< accel bias random walk [m/s^3/sqrt(Hz)]
+  double gravity = 9.81;                 ///< magnitude of gravity [m/s^2]
+};
+
+/// The sensor set-up: what a calibration file describes.
+struct SensorConfig {
+  Pose T_imu_lidar;                       ///< pose of the LiDAR frame in the IMU frame
+  double time_offset_lidar_to_imu = 0.0;  ///< [s]; t_imu = t_lidar + offset
+  ImuNoise imu;
+  LidarModel lidar_model = LidarModel::kVlp16;
+};
+
+/// How logs are read.
+struct InputConfig {
+  std::string points_topic;  ///< PointCloud2 topic; empty = auto-detect
+  std::string imu_topic;     ///< Imu topic; empty = auto-detect
+  double min_range = 0.3;    ///< points closer than this are dropped [m] (robot body, sensor head)
+  double max_range = 120.0;  ///< points farther than this are dropped [m]
+};
+
+struct Config {
+  SensorConfig sensor;
+  InputConfig input;
+
+  /// Checks value ranges; throws storey::Error naming the key at fault.
+  void validate() const;
+};
+
+/// Loads a configuration file over the defaults. Every key is optional; an
+/// unknown key, a wrong type or a value out of range is a storey::Error that
+/// names the file, the key and its line.
+Config loadConfig(const std::string& path);
+/// The whole configuration as YAML, every key present (the run report keeps
+/// it; a test checks that resources/config/default.yaml has the same keys).
+std::string configToYaml(const Config& config);
+/// Applies a YAML text (same rules) over `config`; `source` names it in errors.
+void applyConfigYaml(Config& config, const std::string& yaml_text, const std::string& source);
+
+}  // namespace storey

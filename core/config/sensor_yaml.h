@@ -1,0 +1,21 @@
+#pragma once
+/// YAML readers and writers of the sensor description shared by the config
+/// file (under `sensor:`) and the calibration file (at its top level).
+/// Internal to core/config.
+#include <yaml-cpp/yaml.h>
+
+#include "config/config.h"
+#include "config/yaml_section.h"
+
+namespace storey {
+
+/// {translation: [x, y, z], rotation_xyzw: [x, y, z, w]}; both keys required.
+/// The quaternion must have unit norm within 1e-3 (then it is normalised).
+Pose readPose(YamlSection& section);
+void readImuNoise(YamlSection& section, ImuNoise& imu);
+void readLidarModel(YamlSection& section, const std::string& key, LidarModel& model);
+
+void writePose(YAML::Emitter& out, const Pose& pose);
+void writeImuNoise(YAML::Emitter& out, const ImuNoise& imu);
+
+}  // namespace storey

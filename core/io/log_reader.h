@@ -1,0 +1,41 @@
+#pragma once
+/// Streaming interface of every log format: scans and IMU samples in time
+/// order, read lazily (memory bounded by one message, not by the log).
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <string>
+#include <variant>
+
+#include "config/config.h"
+#include "types/imu_sample.h"
+#include "types/scan.h"
+
+namespace storey {
+
+using LogMessage = std::variant<Scan, ImuSample>;
+
+/// What a reader skipped or repaired, with the reason; shown in the run report.
+struct LogReadStats {
+  std::int64_t scans = 0;                 ///< scans delivered
+  std::int64_t imu_samples = 0;           ///< IMU samples delivered
+  std::int64_t points = 0;                ///< points delivered
+  std::map<std::string, std::int64_t> dropped;  ///< reason -> count (points or messages)
+};
+
+class LogReader {
+ public:
+  virtual ~LogReader() = default;
+  /// Next scan or IMU sample in time order (scans by their stamp); false at the end.
+  /// Throws storey::Error on input that cannot be read, naming file and place.
+  virtual bool next(LogMessage& message) = 0;
+  virtual const LogReadStats& stats() const = 0;
+  /// Human-readable name of the source, e.g. "bag file.bag (/velodyne_points, /imu/data)".
+  virtual std::string describe() const = 0;
+};
+
+/// Opens a log by its content (ROS1 bag for now). Throws storey::Error when the
+/// file is missing, empty, not a supported format, or lacks point clouds or IMU.
+std::unique_ptr<LogReader> openLog(const std::string& path, const Config& config);
+
+}  // namespace storey
