@@ -1,0 +1,170 @@
+#include "odometry/features.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+namespace storey {
+
+const char* toString(FeatureReject reason) {
+  switch (reason) {
+    case FeatureReject::kRingGap: return "ring gap";
+    case FeatureReject::kOccluded: return "occluded";
+    case FeatureReject::kParallelBeam: return "parallel beam";
+    case FeatureReject::kCount: break;
+  }
+  return "unknown";
+}
+
+namespace {
+
+constexpr std::uint8_t kEligible = 0xFF;
+
+/// One ring's points in firing order, with what the extraction needs.
+struct Ring {
+  std::vector<std::uint32_t> index;  // into scan.points
+  std::vector<float> range;
+  std::vector<int> segment;          // contiguous runs without a gap
+  std::vector<float> smoothness;
+  std::vector<std::uint8_t> status;  // kEligible or a FeatureReject value
+};
+
+std::vector<std::vector<std::uint32_t>> groupByRing(const Scan& scan) {
+  std::uint16_t max_ring = 0;
+  for (const ScanPoint& p : scan.points) max_ring = std::max(max_ring, p.ring);
+  std::vector<std::vector<std::uint32_t>> rings(scan.points.empty() ? 0 : max_ring + 1u);
+  for (std::uint32_t i = 0; i < scan.points.size(); ++i) rings[scan.points[i].ring].push_back(i);
+  for (auto& ring : rings) {
+    std::stable_sort(ring.begin(), ring.end(), [&](std::uint32_t a, std::uint32_t b) {
+      return scan.points[a].time < scan.points[b].time;
+    });
+  }
+  return rings;
+}
+
+void segmentRing(const Scan& scan, const FeatureConfig& config, Ring& ring) {
+  const std::size_t n = ring.index.size();
+  std::vector<float> steps(n - 1);
+  for (std::size_t i = 0; i + 1 < n; ++i)
+    steps[i] = scan.points[ring.index[i + 1]].time - scan.points[ring.index[i]].time;
+  std::vector<float> sorted = steps;
+  std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
+  const float max_step = static_cast<float>(config.max_gap_factor) * sorted[sorted.size() / 2];
+  ring.segment.assign(n, 0);
+  for (std::size_t i = 1; i < n; ++i)
+    ring.segment[i] = ring.segment[i - 1] + (steps[i - 1] > max_step ? 1 : 0);
+}
+
+void markUnreliable(const Scan& scan, const FeatureConfig& config, Ring& ring) {
+  const int k = config.neighbours;
+  const int n = static_cast<int>(ring.index.size());
+  ring.status.assign(n, kEligible);
+  for (int i = 0; i < n; ++i) {
+    if (i < k || i + k >= n || ring.segment[i - k] != ring.segment[i] ||
+        ring.segment[i + k] != ring.segment[i])
+      ring.status[i] = static_cast<std::uint8_t>(FeatureReject::kRingGap);
+  }
+  const auto mark = [&](int from, int to, FeatureReject reason) {
+    for (int j = std::max(from, 0); j <= std::min(to, n - 1); ++j)
+      if (ring.status[j] == kEligible) ring.status[j] = static_cast<std::uint8_t>(reason);
+  };
+  for (int i = 0; i + 1 < n; ++i) {
+    if (ring.segment[i] != ring.segment[i + 1]) continue;
+    const float jump = ring.range[i] - ring.range[i + 1];
+    if (jump > config.occlusion_gap) mark(i - k, i, FeatureReject::kOccluded);       // i behind
+    if (-jump > config.occlusion_gap) mark(i + 1, i + 1 + k, FeatureReject::kOccluded);  // i+1 behind
+  }
+  for (int i = 1; i + 1 < n; ++i) {
+    const float limit = static_cast<float>(config.parallel_ratio) * ring.range[i];
+    if (std::abs(ring.range[i - 1] - ring.range[i]) > limit &&
+        std::abs(ring.range[i + 1] - ring.range[i]) > limit &&
+        ring.segment[i - 1] == ring.segment[i + 1])
+      mark(i, i, FeatureReject::kParallelBeam);
+  }
+  (void)scan;
+}
+
+void computeSmoothness(const Scan& scan, const FeatureConfig& config, Ring& ring) {
+  const int k = config.neighbours;
+  const int n = static_cast<int>(ring.index.size());
+  ring.smoothness.assign(n, 0.0f);
+  for (int i = k; i + k < n; ++i) {
+    if (ring.status[i] == static_cast<std::uint8_t>(FeatureReject::kRingGap)) continue;
+    const Eigen::Vector3f& p = scan.points[ring.index[i]].p;
+    Eigen::Vector3f sum = Eigen::Vector3f::Zero();
+    float length = 0.0f;
+    for (int j = i - k; j <= i + k; ++j) {
+      const Eigen::Vector3f offset = scan.points[ring.index[j]].p - p;
+      sum += offset;
+      length += offset.norm();
+    }
+    ring.smoothness[i] = length > 0.0f ? sum.norm() / length : 0.0f;
+  }
+}
+
+void selectFeatures(const Scan& scan, const FeatureConfig& config, const Ring& ring,
+                    std::vector<Eigen::Vector3f>& edges, std::vector<Eigen::Vector3f>& planes,
+                    FeatureSet& result) {
+  const int n = static_cast<int>(ring.index.size());
+  std::vector<int> eligible;
+  for (int i = 0; i < n; ++i)
+    if (ring.status[i] == kEligible) eligible.push_back(i);
+  if (eligible.empty()) return;
+  std::vector<bool> suppressed(n, false);
+  const int sectors = std::max(config.sectors, 1);
+  for (int s = 0; s < sectors; ++s) {
+    const std::size_t begin = eligible.size() * s / sectors;
+    const std::size_t end = eligible.size() * (s + 1) / sectors;
+    std::vector<int> order(eligible.begin() + begin, eligible.begin() + end);
+    std::sort(order.begin(), order.end(), [&](int a, int b) {
+      return ring.smoothness[a] > ring.smoothness[b] || (ring.smoothness[a] == ring.smoothness[b] && a < b);
+    });
+    int picked = 0;
+    for (int i : order) {
+      if (ring.smoothness[i] <= config.edge_threshold) break;
+      ++result.edge_candidates;
+      if (suppressed[i] || picked >= config.max_edges_per_sector) continue;
+      edges.push_back(scan.points[ring.index[i]].p);
+      ++picked;
+      for (int j = std::max(i - config.neighbours, 0); j <= std::min(i + config.neighbours, n - 1); ++j)
+        if (ring.segment[j] == ring.segment[i]) suppressed[j] = true;
+    }
+    for (int i : order) {
+      if (ring.smoothness[i] < config.plane_threshold) {
+        planes.push_back(scan.points[ring.index[i]].p);
+        ++result.plane_candidates;
+      }
+    }
+  }
+}
+
+}  // namespace
+
+FeatureSet extractFeatures(const Scan& scan, const FeatureConfig& config) {
+  FeatureSet result;
+  std::vector<Eigen::Vector3f> edges, planes;
+  const int min_points = 2 * config.neighbours + 2;
+  for (std::vector<std::uint32_t>& indices : groupByRing(scan)) {
+    if (static_cast<int>(indices.size()) < min_points) {
+      result.rejected[static_cast<std::size_t>(FeatureReject::kRingGap)] +=
+          static_cast<std::int64_t>(indices.size());
+      continue;
+    }
+    Ring ring;
+    ring.index = std::move(indices);
+    ring.range.resize(ring.index.size());
+    for (std::size_t i = 0; i < ring.index.size(); ++i)
+      ring.range[i] = scan.points[ring.index[i]].p.norm();
+    segmentRing(scan, config, ring);
+    markUnreliable(scan, config, ring);
+    computeSmoothness(scan, config, ring);
+    for (std::uint8_t status : ring.status)
+      if (status != kEligible) ++result.rejected[status];
+    selectFeatures(scan, config, ring, edges, planes, result);
+  }
+  result.edges = voxelDownsample(edges, config.edge_voxel_size);
+  result.planes = voxelDownsample(planes, config.plane_voxel_size);
+  return result;
+}
+
+}  // namespace storey
