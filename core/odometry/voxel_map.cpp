@@ -1,0 +1,138 @@
+#include "odometry/voxel_map.h"
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+
+namespace storey {
+
+VoxelMap::VoxelMap(const VoxelMapConfig& config)
+    : config_(config), inverse_size_(static_cast<float>(1.0 / config.voxel_size)) {}
+
+Eigen::Vector3i VoxelMap::cellOf(const Eigen::Vector3f& p) const {
+  return Eigen::Vector3i(static_cast<int>(std::floor(p.x() * inverse_size_)),
+                         static_cast<int>(std::floor(p.y() * inverse_size_)),
+                         static_cast<int>(std::floor(p.z() * inverse_size_)));
+}
+
+VoxelMap::Key VoxelMap::keyOf(std::int64_t x, std::int64_t y, std::int64_t z) const {
+  const auto pack = [](std::int64_t v) { return static_cast<std::uint64_t>(v + (1 << 20)) & 0x1FFFFF; };
+  return (pack(x) << 42) | (pack(y) << 21) | pack(z);
+}
+
+VoxelMap::Key VoxelMap::keyOf(const Eigen::Vector3f& p) const {
+  const Eigen::Vector3i c = cellOf(p);
+  return keyOf(c.x(), c.y(), c.z());
+}
+
+void VoxelMap::insert(const std::vector<Eigen::Vector3f>& points_world) {
+  const float min_spacing_squared =
+      static_cast<float>(config_.min_point_spacing * config_.min_point_spacing);
+  const std::size_t capacity = static_cast<std::size_t>(std::max(config_.max_points_per_voxel, 1));
+  for (const Eigen::Vector3f& p : points_world) {
+    if (!p.allFinite()) continue;
+    std::vector<Eigen::Vector3f>& voxel = voxels_[keyOf(p)];
+    if (voxel.size() >= capacity) continue;
+    const bool too_close = std::any_of(voxel.begin(), voxel.end(), [&](const Eigen::Vector3f& q) {
+      return (q - p).squaredNorm() < min_spacing_squared;
+    });
+    if (too_close) continue;
+    if (voxel.empty()) voxel.reserve(capacity);
+    voxel.push_back(p);
+    ++point_count_;
+  }
+}
+
+void VoxelMap::removeFar(const Eigen::Vector3d& sensor_world) {
+  const double max_squared = config_.max_range * config_.max_range;
+  for (auto it = voxels_.begin(); it != voxels_.end();) {
+    const bool far = !it->second.empty() &&
+                     (it->second.front().cast<double>() - sensor_world).squaredNorm() > max_squared;
+    if (far || it->second.empty()) {
+      point_count_ -= it->second.size();
+      it = voxels_.erase(it);
+    } else {
+      ++it;
+    }
+  }
+}
+
+std::vector<Eigen::Vector3f> VoxelMap::nearest(const Eigen::Vector3f& query, int k,
+                                               float max_distance) const {
+  std::vector<std::pair<float, const Eigen::Vector3f*>> candidates;
+  candidates.reserve(64);
+  const float max_squared = max_distance * max_distance;
+  const Eigen::Vector3i c = cellOf(query);
+  for (int dx = -1; dx <= 1; ++dx) {
+    for (int dy = -1; dy <= 1; ++dy) {
+      for (int dz = -1; dz <= 1; ++dz) {
+        const auto it = voxels_.find(keyOf(c.x() + dx, c.y() + dy, c.z() + dz));
+        if (it == voxels_.end()) continue;
+        for (const Eigen::Vector3f& p : it->second) {
+          const float d2 = (p - query).squaredNorm();
+          if (d2 <= max_squared) candidates.emplace_back(d2, &p);
+        }
+      }
+    }
+  }
+  const std::size_t count = std::min<std::size_t>(static_cast<std::size_t>(std::max(k, 0)), candidates.size());
+  std::partial_sort(candidates.begin(), candidates.begin() + count, candidates.end(),
+                    [](const auto& a, const auto& b) { return a.first < b.first; });
+  std::vector<Eigen::Vector3f> result;
+  result.reserve(count);
+  for (std::size_t i = 0; i < count; ++i) result.push_back(*candidates[i].second);
+  return result;
+}
+
+namespace {
+
+void meanAndCovariance(const std::vector<Eigen::Vector3f>& points, Eigen::Vector3d& mean,
+                       Eigen::Matrix3d& covariance) {
+  mean.setZero();
+  for (const auto& p : points) mean += p.cast<double>();
+  mean /= static_cast<double>(points.size());
+  covariance.setZero();
+  for (const auto& p : points) {
+    const Eigen::Vector3d d = p.cast<double>() - mean;
+    covariance += d * d.transpose();
+  }
+  covariance /= static_cast<double>(points.size());
+}
+
+}  // namespace
+
+PlaneFit fitPlane(const std::vector<Eigen::Vector3f>& points, double max_distance) {
+  PlaneFit fit;
+  if (points.size() < 3) return fit;
+  Eigen::Vector3d mean;
+  Eigen::Matrix3d covariance;
+  meanAndCovariance(points, mean, covariance);
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(covariance);
+  // Eigenvalues ascending: the smallest one's vector is the normal; the
+  // points must also spread in two directions: a neighbourhood taken from one
+  // ring of a sparse LiDAR is nearly a line and leaves the normal undefined.
+  if (solver.eigenvalues()(1) < 1e-8 || solver.eigenvalues()(1) < 0.01 * solver.eigenvalues()(2))
+    return fit;
+  fit.normal = solver.eigenvectors().col(0).normalized();
+  fit.d = fit.normal.dot(mean);
+  for (const auto& p : points)
+    if (std::abs(fit.normal.dot(p.cast<double>()) - fit.d) > max_distance) return fit;
+  fit.valid = true;
+  return fit;
+}
+
+LineFit fitLine(const std::vector<Eigen::Vector3f>& points, double min_ratio) {
+  LineFit fit;
+  if (points.size() < 2) return fit;
+  Eigen::Vector3d mean;
+  Eigen::Matrix3d covariance;
+  meanAndCovariance(points, mean, covariance);
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(covariance);
+  fit.point = mean;
+  fit.direction = solver.eigenvectors().col(2).normalized();
+  fit.valid = solver.eigenvalues()(2) > min_ratio * solver.eigenvalues()(1) &&
+              solver.eigenvalues()(2) > 1e-8;
+  return fit;
+}
+
+}  // namespace storey

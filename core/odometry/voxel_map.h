@@ -1,0 +1,71 @@
+#pragma once
+/// The odometry's local map: points in the world frame kept in a hash of
+/// cubic voxels (at most `max_points_per_voxel` each, spread at least
+/// `min_point_spacing` apart), queried for the k nearest neighbours of a
+/// point among the 27 voxels around it. Voxels far from the sensor are
+/// dropped, so memory is bounded by the map's extent around the sensor, not
+/// by the log's length (the idea of iVox, Faster-LIO, and of KISS-ICP's map).
+#include <Eigen/Core>
+#include <cstdint>
+#include <unordered_map>
+#include <vector>
+
+namespace storey {
+
+struct VoxelMapConfig {
+  double voxel_size = 0.5;          ///< voxel edge [m]
+  int max_points_per_voxel = 20;    ///< points kept per voxel [>= 1]
+  double min_point_spacing = 0.05;  ///< a new point closer than this to a kept one is skipped [m]
+  double max_range = 60.0;          ///< voxels farther than this from the sensor are dropped [m]
+};
+
+class VoxelMap {
+ public:
+  explicit VoxelMap(const VoxelMapConfig& config);
+
+  /// Adds points (world frame).
+  void insert(const std::vector<Eigen::Vector3f>& points_world);
+  /// Drops every voxel whose centre is farther than config.max_range from `sensor_world`.
+  void removeFar(const Eigen::Vector3d& sensor_world);
+
+  /// Up to k nearest neighbours of `query` within `max_distance` [m], nearest
+  /// first. Searches the 27 voxels around the query, so max_distance should
+  /// not exceed the voxel size.
+  std::vector<Eigen::Vector3f> nearest(const Eigen::Vector3f& query, int k, float max_distance) const;
+
+  std::size_t pointCount() const { return point_count_; }
+  std::size_t voxelCount() const { return voxels_.size(); }
+  bool empty() const { return point_count_ == 0; }
+
+ private:
+  using Key = std::uint64_t;
+  Key keyOf(const Eigen::Vector3f& p) const;
+  Key keyOf(std::int64_t x, std::int64_t y, std::int64_t z) const;
+  Eigen::Vector3i cellOf(const Eigen::Vector3f& p) const;
+
+  VoxelMapConfig config_;
+  float inverse_size_;
+  std::unordered_map<Key, std::vector<Eigen::Vector3f>> voxels_;
+  std::size_t point_count_ = 0;
+};
+
+/// Plane n . x = d fitted to points (least squares by PCA); `valid` only when
+/// every point lies within `max_distance` of it and the points spread in two
+/// directions (second eigenvalue at least 1 % of the largest: not a line).
+struct PlaneFit {
+  Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();
+  double d = 0.0;
+  bool valid = false;
+};
+PlaneFit fitPlane(const std::vector<Eigen::Vector3f>& points, double max_distance);
+
+/// Line through `point` along unit `direction` fitted by PCA; `valid` only when
+/// the points are clearly elongated (largest eigenvalue > `min_ratio` x the second).
+struct LineFit {
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();
+  Eigen::Vector3d direction = Eigen::Vector3d::UnitX();
+  bool valid = false;
+};
+LineFit fitLine(const std::vector<Eigen::Vector3f>& points, double min_ratio);
+
+}  // namespace storey
