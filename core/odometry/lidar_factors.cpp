@@ -1,0 +1,71 @@
+#include "odometry/lidar_factors.h"
+
+#include <Eigen/Geometry>
+
+namespace storey {
+namespace {
+
+Eigen::Matrix3d skew(const Eigen::Vector3d& v) {
+  Eigen::Matrix3d m;
+  m << 0.0, -v.z(), v.y(), v.z(), 0.0, -v.x(), -v.y(), v.x(), 0.0;
+  return m;
+}
+
+}  // namespace
+
+void worldPointJacobian(const double* pose, const Eigen::Vector3d& y_imu, Eigen::Vector3d& x_world,
+                        Eigen::Matrix<double, 3, 7>* jacobian) {
+  const Eigen::Map<const Eigen::Vector3d> p(pose);
+  const Eigen::Map<const Eigen::Quaterniond> q(pose + 3);
+  const Eigen::Vector3d v = q.vec();
+  const double w = q.w();
+  const Eigen::Vector3d v_cross_y = v.cross(y_imu);
+  x_world = y_imu + 2.0 * w * v_cross_y + 2.0 * v.cross(v_cross_y) + p;
+  if (jacobian) {
+    jacobian->leftCols<3>().setIdentity();
+    jacobian->block<3, 3>(0, 3) =
+        -2.0 * w * skew(y_imu) +
+        2.0 * (v * y_imu.transpose() + v.dot(y_imu) * Eigen::Matrix3d::Identity() -
+               2.0 * y_imu * v.transpose());
+    jacobian->col(6) = 2.0 * v_cross_y;
+  }
+}
+
+PointToPlaneFactor::PointToPlaneFactor(const Eigen::Vector3d& y_imu, const Eigen::Vector3d& n_world,
+                                       double d_world, double weight)
+    : y_imu_(y_imu), n_world_(n_world), d_world_(d_world), weight_(weight) {}
+
+bool PointToPlaneFactor::Evaluate(double const* const* parameters, double* residuals,
+                                  double** jacobians) const {
+  Eigen::Vector3d x_world;
+  Eigen::Matrix<double, 3, 7> J;
+  const bool want_jacobian = jacobians != nullptr && jacobians[0] != nullptr;
+  worldPointJacobian(parameters[0], y_imu_, x_world, want_jacobian ? &J : nullptr);
+  residuals[0] = weight_ * (n_world_.dot(x_world) - d_world_);
+  if (want_jacobian) {
+    Eigen::Map<Eigen::Matrix<double, 1, 7>> out(jacobians[0]);
+    out = weight_ * n_world_.transpose() * J;
+  }
+  return true;
+}
+
+PointToLineFactor::PointToLineFactor(const Eigen::Vector3d& y_imu, const Eigen::Vector3d& a_world,
+                                     const Eigen::Vector3d& u_world, double weight)
+    : y_imu_(y_imu), a_world_(a_world), u_world_(u_world.normalized()), weight_(weight) {}
+
+bool PointToLineFactor::Evaluate(double const* const* parameters, double* residuals,
+                                 double** jacobians) const {
+  Eigen::Vector3d x_world;
+  Eigen::Matrix<double, 3, 7> J;
+  const bool want_jacobian = jacobians != nullptr && jacobians[0] != nullptr;
+  worldPointJacobian(parameters[0], y_imu_, x_world, want_jacobian ? &J : nullptr);
+  Eigen::Map<Eigen::Vector3d> r(residuals);
+  r = weight_ * (x_world - a_world_).cross(u_world_);
+  if (want_jacobian) {
+    Eigen::Map<Eigen::Matrix<double, 3, 7, Eigen::RowMajor>> out(jacobians[0]);
+    out = -weight_ * skew(u_world_) * J;
+  }
+  return true;
+}
+
+}  // namespace storey

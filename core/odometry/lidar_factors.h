@@ -1,0 +1,62 @@
+#pragma once
+/// LiDAR residuals of the odometry, on the IMU pose block of
+/// imu/imu_state_blocks.h ([p_world_imu (3), q_world_imu x y z w (4)]).
+///
+/// A feature point x_lidar is first moved into the IMU frame with the fixed
+/// extrinsic: y = T_imu_lidar * x_lidar; in the world it is
+///   x_world = R(q) y + p.
+///
+/// Point-to-plane (planar features; plane n . x = d fitted to map points):
+///   r = w (n . x_world - d)                                    (1 residual)
+/// Point-to-line (edge features; line through a with unit direction u):
+///   r = w (x_world - a) x u                                    (3 residuals)
+/// |r| / w is the point's distance to the plane or line. The weight w is
+/// 1 / sigma with sigma the combined uncertainty of the point and of the fit
+/// [m], so the residuals are whitened (covariance-weighted) like the IMU factor's.
+///
+/// Jacobians (analytic, with respect to the 7 ambient coordinates; Ceres
+/// applies the pose manifold's PlusJacobian): dx_world/dp = I and, for a unit
+/// quaternion q = (v, w_q), R(q) y = y + 2 w_q (v x y) + 2 v x (v x y), so
+///   dx_world/dv   = -2 w_q [y]x + 2 (v y^T + (v . y) I - 2 y v^T)
+///   dx_world/dw_q = 2 v x y
+/// Point-to-plane: dr/dx_world = w n^T; point-to-line: dr/dx_world = -w [u]x.
+#include <Eigen/Core>
+#include <ceres/sized_cost_function.h>
+
+namespace storey {
+
+/// d x_world / d [p, q] (3 x 7, ambient) and x_world for y in the IMU frame.
+void worldPointJacobian(const double* pose, const Eigen::Vector3d& y_imu, Eigen::Vector3d& x_world,
+                        Eigen::Matrix<double, 3, 7>* jacobian);
+
+class PointToPlaneFactor : public ceres::SizedCostFunction<1, 7> {
+ public:
+  /// y_imu: the feature point in the IMU frame; plane n . x = d in the world; weight 1/sigma [1/m].
+  PointToPlaneFactor(const Eigen::Vector3d& y_imu, const Eigen::Vector3d& n_world, double d_world,
+                     double weight);
+  bool Evaluate(double const* const* parameters, double* residuals,
+                double** jacobians) const override;
+
+ private:
+  Eigen::Vector3d y_imu_;
+  Eigen::Vector3d n_world_;
+  double d_world_;
+  double weight_;
+};
+
+class PointToLineFactor : public ceres::SizedCostFunction<3, 7> {
+ public:
+  /// y_imu: the feature point in the IMU frame; line through a_world along unit u_world.
+  PointToLineFactor(const Eigen::Vector3d& y_imu, const Eigen::Vector3d& a_world,
+                    const Eigen::Vector3d& u_world, double weight);
+  bool Evaluate(double const* const* parameters, double* residuals,
+                double** jacobians) const override;
+
+ private:
+  Eigen::Vector3d y_imu_;
+  Eigen::Vector3d a_world_;
+  Eigen::Vector3d u_world_;
+  double weight_;
+};
+
+}  // namespace storey
