@@ -35,6 +35,10 @@ struct SimulateOptions {
   std::optional<double> range_noise;  ///< [m]
   std::optional<double> imu_rate_hz;  ///< [Hz]
   bool progress = true;
+  bool perfect_sensors = false;        ///< --perfect-sensors: no noise, dropouts or biases
+  bool compress = true;                ///< --no-compress clears it: plain (not LZ4) bag chunks
+  std::optional<double> max_duration;  ///< --duration: stop the sensors after this time [s]
+  int threads = 0;                     ///< --threads: ray-casting threads, 0 = all cores
 };
 
 struct EvalOptions {

@@ -1,6 +1,7 @@
 #include "config/config.h"
 
 #include <cmath>
+#include <sstream>
 
 #include "common/error.h"
 #include "config/sensor_yaml.h"
@@ -28,6 +29,108 @@ LidarModel lidarModelFromString(const std::string& name) {
 
 namespace {
 
+// One list of the plain keys of each section, shared by the reader and the
+// writer (so default.yaml, the loader and configToYaml cannot disagree).
+// V provides field(key, value) and section(key, visit_function).
+
+template <typename V>
+void visitInput(V& v, InputConfig& c) {
+  v.field("points_topic", c.points_topic);
+  v.field("imu_topic", c.imu_topic);
+  v.field("min_range", c.min_range);
+  v.field("max_range", c.max_range);
+}
+
+template <typename V>
+void visitOdometry(V& v, OdometryConfig& c) {
+  v.field("window_size", c.window_size);
+  v.field("matching_rounds", c.matching_rounds);
+  v.field("max_iterations", c.max_iterations);
+  v.field("neighbours", c.neighbours);
+  v.field("max_neighbour_distance", c.max_neighbour_distance);
+  v.field("plane_fit_tolerance", c.plane_fit_tolerance);
+  v.field("line_eigen_ratio", c.line_eigen_ratio);
+  v.field("max_point_distance", c.max_point_distance);
+  v.field("point_sigma", c.point_sigma);
+  v.field("huber_width", c.huber_width);
+  v.field("degenerate_translation_std", c.degenerate_translation_std);
+  v.field("degenerate_rotation_std", c.degenerate_rotation_std);
+  v.field("max_scan_gap", c.max_scan_gap);
+  v.section("features", [&](auto& f) {
+    FeatureConfig& fc = c.features;
+    f.field("neighbours", fc.neighbours);
+    f.field("sectors", fc.sectors);
+    f.field("max_edges_per_sector", fc.max_edges_per_sector);
+    f.field("edge_threshold", fc.edge_threshold);
+    f.field("plane_threshold", fc.plane_threshold);
+    f.field("occlusion_gap", fc.occlusion_gap);
+    f.field("parallel_ratio", fc.parallel_ratio);
+    f.field("max_gap_factor", fc.max_gap_factor);
+    f.field("plane_voxel_size", fc.plane_voxel_size);
+    f.field("edge_voxel_size", fc.edge_voxel_size);
+  });
+  v.section("local_map", [&](auto& m) {
+    m.field("voxel_size", c.local_map.voxel_size);
+    m.field("max_points_per_voxel", c.local_map.max_points_per_voxel);
+    m.field("min_point_spacing", c.local_map.min_point_spacing);
+    m.field("max_range", c.local_map.max_range);
+  });
+  v.section("imu_init", [&](auto& i) {
+    ImuInitConfig& ic = c.imu_init;
+    i.field("still_window", ic.still_window);
+    i.field("max_gyro_std", ic.max_gyro_std);
+    i.field("max_accel_std", ic.max_accel_std);
+    i.field("noise_margin", ic.noise_margin);
+    i.field("max_gyro_bias", ic.max_gyro_bias);
+    i.field("max_gravity_error", ic.max_gravity_error);
+    i.field("accel_bias_along_gravity", ic.accel_bias_along_gravity);
+  });
+  v.section("preintegration", [&](auto& p) {
+    p.field("repropagate_gyro_bias_change", c.preintegration.repropagate_gyro_bias_change);
+    p.field("repropagate_accel_bias_change", c.preintegration.repropagate_accel_bias_change);
+  });
+}
+
+template <typename V>
+void visitBackend(V& v, BackendConfig& c) {
+  v.field("srp", c.srp);
+}
+
+struct YamlReader {
+  YamlSection& section_;
+  template <typename T>
+  void field(const char* key, T& value) {
+    section_.read(key, value);
+  }
+  template <typename F>
+  void section(const char* key, F visit) {
+    YamlSection sub = section_.section(key);
+    YamlReader reader{sub};
+    visit(reader);
+    sub.finish();
+  }
+};
+
+struct YamlWriter {
+  YAML::Emitter& out;
+  template <typename T>
+  void field(const char* key, const T& value) {
+    out << YAML::Key << key << YAML::Value << value;
+  }
+  template <typename F>
+  void section(const char* key, F visit) {
+    out << YAML::Key << key << YAML::Value << YAML::BeginMap;
+    visit(*this);
+    out << YAML::EndMap;
+  }
+};
+
+template <typename F>
+void readSection(YamlSection& top, const char* key, F visit) {
+  YamlReader reader{top};
+  reader.section(key, visit);
+}
+
 void readSensor(YamlSection sensor, SensorConfig& config) {
   YamlSection pose = sensor.section("T_imu_lidar");
   if (sensor.has("T_imu_lidar")) config.T_imu_lidar = readPose(pose);
@@ -40,30 +143,27 @@ void readSensor(YamlSection sensor, SensorConfig& config) {
   sensor.finish();
 }
 
-void readInput(YamlSection input, InputConfig& config) {
-  input.read("points_topic", config.points_topic);
-  input.read("imu_topic", config.imu_topic);
-  input.read("min_range", config.min_range);
-  input.read("max_range", config.max_range);
-  input.finish();
-}
-
 }  // namespace
 
 void applyConfigYaml(Config& config, const std::string& yaml_text, const std::string& source) {
   const YAML::Node root = parseYaml(yaml_text, source);
   YamlSection top(root, source, "");
-  readSensor(top.section("sensor"), config.sensor);
-  readInput(top.section("input"), config.input);
+  Config result = config;  // all or nothing
+  readSensor(top.section("sensor"), result.sensor);
+  readSection(top, "input", [&](auto& v) { visitInput(v, result.input); });
+  readSection(top, "odometry", [&](auto& v) { visitOdometry(v, result.odometry); });
+  readSection(top, "backend", [&](auto& v) { visitBackend(v, result.backend); });
   top.finish();
   try {
-    config.validate();
+    result.validate();
   } catch (const Error& e) {
     throw Error(source + ": " + e.what());
   }
+  config = result;
 }
 
 std::string configToYaml(const Config& config) {
+  Config copy = config;
   YAML::Emitter out;
   out.SetDoublePrecision(17);
   out << YAML::BeginMap;
@@ -77,12 +177,10 @@ std::string configToYaml(const Config& config) {
   out << YAML::Key << "lidar" << YAML::Value << YAML::BeginMap << YAML::Key << "model"
       << YAML::Value << toString(config.sensor.lidar_model) << YAML::EndMap;
   out << YAML::EndMap;
-  out << YAML::Key << "input" << YAML::Value << YAML::BeginMap;
-  out << YAML::Key << "points_topic" << YAML::Value << config.input.points_topic;
-  out << YAML::Key << "imu_topic" << YAML::Value << config.input.imu_topic;
-  out << YAML::Key << "min_range" << YAML::Value << config.input.min_range;
-  out << YAML::Key << "max_range" << YAML::Value << config.input.max_range;
-  out << YAML::EndMap;
+  YamlWriter writer{out};
+  writer.section("input", [&](auto& v) { visitInput(v, copy.input); });
+  writer.section("odometry", [&](auto& v) { visitOdometry(v, copy.odometry); });
+  writer.section("backend", [&](auto& v) { visitBackend(v, copy.backend); });
   out << YAML::EndMap;
   return std::string(out.c_str()) + "\n";
 }
@@ -93,13 +191,66 @@ Config loadConfig(const std::string& path) {
   return config;
 }
 
+namespace {
+
+void require(bool ok, const std::string& key, const std::string& what) {
+  if (!ok) throw Error("key '" + key + "' " + what);
+}
+
+}  // namespace
+
 void Config::validate() const {
-  if (!(input.min_range >= 0.0)) throw Error("key 'input.min_range' must be >= 0");
-  if (!(input.max_range > input.min_range))
-    throw Error("key 'input.max_range' must be larger than 'input.min_range'");
-  if (std::abs(sensor.time_offset_lidar_to_imu) > 1.0)
-    throw Error("key 'sensor.time_offset_lidar_to_imu' must be within [-1, 1] s");
-  if (sensor.imu.rate_hz > 10000.0) throw Error("key 'sensor.imu.rate_hz' must be <= 10000");
+  require(input.min_range >= 0.0, "input.min_range", "must be >= 0");
+  require(input.max_range > input.min_range, "input.max_range",
+          "must be larger than 'input.min_range'");
+  require(std::abs(sensor.time_offset_lidar_to_imu) <= 1.0, "sensor.time_offset_lidar_to_imu",
+          "must be within [-1, 1] s");
+  require(sensor.imu.rate_hz <= 10000.0, "sensor.imu.rate_hz", "must be <= 10000");
+  const OdometryConfig& o = odometry;
+  require(o.window_size >= 2, "odometry.window_size", "must be >= 2");
+  require(o.matching_rounds >= 1, "odometry.matching_rounds", "must be >= 1");
+  require(o.max_iterations >= 1, "odometry.max_iterations", "must be >= 1");
+  require(o.neighbours >= 3, "odometry.neighbours", "must be >= 3");
+  for (const auto& [key, value] :
+       {std::pair<const char*, double>{"odometry.max_neighbour_distance", o.max_neighbour_distance},
+        {"odometry.plane_fit_tolerance", o.plane_fit_tolerance},
+        {"odometry.line_eigen_ratio", o.line_eigen_ratio},
+        {"odometry.max_point_distance", o.max_point_distance},
+        {"odometry.point_sigma", o.point_sigma},
+        {"odometry.huber_width", o.huber_width},
+        {"odometry.degenerate_translation_std", o.degenerate_translation_std},
+        {"odometry.degenerate_rotation_std", o.degenerate_rotation_std},
+        {"odometry.max_scan_gap", o.max_scan_gap},
+        {"odometry.local_map.voxel_size", o.local_map.voxel_size},
+        {"odometry.local_map.max_range", o.local_map.max_range},
+        {"odometry.imu_init.still_window", o.imu_init.still_window},
+        {"odometry.imu_init.max_gyro_std", o.imu_init.max_gyro_std},
+        {"odometry.imu_init.max_accel_std", o.imu_init.max_accel_std},
+        {"odometry.features.edge_threshold", o.features.edge_threshold},
+        {"odometry.features.occlusion_gap", o.features.occlusion_gap}}) {
+    require(value > 0.0, key, "must be positive");
+  }
+  require(o.features.neighbours >= 2, "odometry.features.neighbours", "must be >= 2");
+  require(o.features.sectors >= 1, "odometry.features.sectors", "must be >= 1");
+  require(o.features.plane_threshold < o.features.edge_threshold,
+          "odometry.features.plane_threshold", "must be below 'odometry.features.edge_threshold'");
+  require(o.local_map.max_points_per_voxel >= 1, "odometry.local_map.max_points_per_voxel",
+          "must be >= 1");
+  require(o.max_neighbour_distance <= o.local_map.voxel_size,
+          "odometry.max_neighbour_distance",
+          "must not exceed 'odometry.local_map.voxel_size' (neighbours are searched in the 27 "
+          "voxels around a point)");
+  require(o.imu_init.noise_margin >= 1.0, "odometry.imu_init.noise_margin", "must be >= 1");
+  try {
+    o.imu_init.validate();
+  } catch (const Error& e) {
+    throw Error(std::string("in section 'odometry.imu_init': ") + e.what());
+  }
+  try {
+    o.preintegration.validate();
+  } catch (const Error& e) {
+    throw Error(std::string("in section 'odometry.preintegration': ") + e.what());
+  }
 }
 
 }  // namespace storey

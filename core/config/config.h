@@ -4,6 +4,7 @@
 /// (resources/config/default.yaml), the CLI and the plugin only fill these.
 #include <string>
 
+#include "odometry/odometry_config.h"
 #include "types/pose.h"
 
 namespace storey {
@@ -40,9 +41,16 @@ struct InputConfig {
   double max_range = 120.0;  ///< points farther than this are dropped [m]
 };
 
+/// The back end (SRP constraints, keyframe graph).
+struct BackendConfig {
+  bool srp = true;  ///< SRP back end on; off (`--no-srp`): trajectory = odometry
+};
+
 struct Config {
   SensorConfig sensor;
   InputConfig input;
+  OdometryConfig odometry;
+  BackendConfig backend;
 
   /// Checks value ranges; throws storey::Error naming the key at fault.
   void validate() const;

@@ -36,7 +36,10 @@ void readImuNoise(YamlSection& section, ImuNoise& imu) {
                           {"gravity", &imu.gravity}};
   for (const Field& f : fields) {
     section.read(f.key, *f.value);
-    if (section.has(f.key) && !(*f.value > 0.0)) section.fail(f.key, "must be positive");
+    const bool is_density = f.value != &imu.rate_hz && f.value != &imu.gravity;
+    if (section.has(f.key) && is_density && !(*f.value >= 0.0))
+      section.fail(f.key, "must be >= 0");
+    if (section.has(f.key) && !is_density && !(*f.value > 0.0)) section.fail(f.key, "must be positive");
   }
   section.finish();
 }

@@ -32,6 +32,8 @@ class LogReader {
   virtual const LogReadStats& stats() const = 0;
   /// Human-readable name of the source, e.g. "bag file.bag (/velodyne_points, /imu/data)".
   virtual std::string describe() const = 0;
+  /// Fraction of the log read so far in [0, 1] (by time), or -1 when unknown.
+  virtual double progress() const { return -1.0; }
 };
 
 /// Opens a log by its content (ROS1 bag for now). Throws storey::Error when the

@@ -55,11 +55,11 @@ struct PointFilter {
 
 /// Points of one cloud with the count of each kind of point dropped.
 struct DecodedCloud {
-  std::vector<ScanPoint> points;   ///< kept points, in the order of the cloud
-  std::int64_t non_finite = 0;     ///< x, y, z or time NaN / inf
-  std::int64_t no_return = 0;      ///< x = y = z = 0 (organised clouds mark missing returns so)
-  std::int64_t out_of_range = 0;   ///< range outside [min_range, max_range]
-  std::int64_t invalid_ring = 0;   ///< ring value negative, above 65535 or not finite
+  std::vector<ScanPoint> points;  ///< kept points, in the order of the cloud
+  std::int64_t non_finite = 0;    ///< x, y, z or time NaN / inf
+  std::int64_t no_return = 0;     ///< x = y = z = 0 (organised clouds mark missing returns so)
+  std::int64_t out_of_range = 0;  ///< range outside [min_range, max_range]
+  std::int64_t invalid_ring = 0;  ///< ring value negative, above 65535 or not finite
 };
 
 /// Decodes every point of `cloud` (stamped `stamp_ns`) with `layout`. Ring

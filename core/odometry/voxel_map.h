@@ -13,9 +13,9 @@
 namespace storey {
 
 struct VoxelMapConfig {
-  double voxel_size = 0.5;          ///< voxel edge [m]
-  int max_points_per_voxel = 20;    ///< points kept per voxel [>= 1]
-  double min_point_spacing = 0.05;  ///< a new point closer than this to a kept one is skipped [m]
+  double voxel_size = 1.0;          ///< voxel edge [m]
+  int max_points_per_voxel = 30;    ///< points kept per voxel [>= 1]
+  double min_point_spacing = 0.1;   ///< a new point closer than this to a kept one is skipped [m]
   double max_range = 60.0;          ///< voxels farther than this from the sensor are dropped [m]
 };
 

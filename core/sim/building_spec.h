@@ -57,9 +57,9 @@ struct RobotSpec {
   double max_yaw_rate = 0.7;       ///< [rad/s] (YAML: degrees/s)
   double turn_radius = 0.5;        ///< corner fillet radius, reduced where space is short [m]
   double body_height = 0.5;        ///< body centre above the floor / stair line [m]
-  double lane_offset = 0.45;       ///< walking lanes at +-offset from the corridor axis [m]
+  double lane_offset = 0.35;       ///< walking lanes at +-offset from the corridor axis [m]
   double still_time = 2.0;         ///< standing still at start and end [s]
-  double start_offset = 1.5;       ///< start position from the west end of the corridor [m]
+  double start_offset = 2.5;       ///< start position from the west end of the corridor [m]
   GaitSpec gait;
 };
 

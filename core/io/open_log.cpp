@@ -1,0 +1,16 @@
+#include "common/error.h"
+#include "io/log_format.h"
+#include "io/log_reader.h"
+#include "io/rosbag_reader.h"
+
+namespace storey {
+
+std::unique_ptr<LogReader> openLog(const std::string& path, const Config& config) {
+  switch (detectLogFormat(path)) {
+    case LogFormat::kRosbag1:
+      return openRosbagLog(path, config);
+  }
+  throw Error(path + ": unknown log format");
+}
+
+}  // namespace storey

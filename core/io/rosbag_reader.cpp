@@ -1,0 +1,137 @@
+#include "io/rosbag_reader.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "common/error.h"
+#include "common/log.h"
+#include "io/message_sequencer.h"
+#include "io/point_cloud_to_scan.h"
+#include "io/rosbag_file.h"
+#include "io/topic_selection.h"
+
+namespace storey {
+namespace {
+
+/// Key of LogReadStats::dropped for messages of a selected topic recorded with another type.
+constexpr const char* kDropOtherType = "message_of_other_type";
+/// Stamp-to-record-time latencies of the two streams farther apart than this
+/// suggest that the LiDAR and the IMU stamp with different clocks.
+constexpr double kClockMismatchS = 1.0;
+
+class RosbagReader final : public LogReader {
+ public:
+  RosbagReader(const std::string& path, const Config& config)
+      : bag_(path),
+        topics_(chooseTopics(bag_.topics(), config.input, path)),
+        clouds_(topics_.points_topic, config.sensor.lidar_model,
+                PointFilter{config.input.min_range, config.input.max_range}),
+        sequencer_(sequencerOptions(config), stats_),
+        offset_ns_(secondsToNs(config.sensor.time_offset_lidar_to_imu)) {
+    bag_.select({topics_.points_topic, topics_.imu_topic});
+  }
+
+  bool next(LogMessage& message) override {
+    while (!sequencer_.pop(message)) {
+      if (ended_) return false;
+      if (!readOne()) {
+        ended_ = true;
+        sequencer_.finish();
+      }
+    }
+    return true;
+  }
+
+  const LogReadStats& stats() const override { return stats_; }
+
+  double progress() const override {
+    if (ended_) return 1.0;
+    if (!started_) return 0.0;
+    const std::int64_t span = bag_.selectionEndNs() - bag_.selectionBeginNs();
+    if (span <= 0) return 0.0;
+    const double done = static_cast<double>(last_record_ns_ - bag_.selectionBeginNs()) / span;
+    return std::min(1.0, std::max(0.0, done));
+  }
+
+  std::string describe() const override {
+    return "ROS1 bag " + bag_.path() + " (" + topics_.points_topic + ", " + topics_.imu_topic + ")";
+  }
+
+ private:
+  static MessageSequencer::Options sequencerOptions(const Config& config) {
+    MessageSequencer::Options options;
+    options.lidar_to_imu_offset_ns = secondsToNs(config.sensor.time_offset_lidar_to_imu);
+    return options;
+  }
+
+  /// Reads one message of the bag into the sequencer; false at the end of the bag.
+  bool readOne() {
+    if (!bag_.next()) return false;
+    started_ = true;
+    last_record_ns_ = bag_.recordTimeNs();
+    const bool is_points = bag_.topic() == topics_.points_topic;
+    if (bag_.type() != (is_points ? kPointCloud2Type : kImuType)) {
+      ++stats_.dropped[kDropOtherType];
+      return true;
+    }
+    if (is_points) {
+      bag_.readPointCloud(cloud_);
+      Scan scan;
+      try {
+        scan = clouds_.convert(cloud_.view(), cloud_.stamp_ns, cloud_.frame_id, stats_.dropped);
+      } catch (const Error& e) {
+        throw Error(bag_.where() + ": " + e.what());
+      }
+      checkClocks(scan.stamp_ns + offset_ns_, true);
+      sequencer_.push(std::move(scan));
+    } else {
+      const ImuMessage imu = bag_.readImu();
+      if (!imu.has_gyro || !imu.has_accel) {
+        ++stats_.dropped[kDropImuMissingData];
+        return true;
+      }
+      checkClocks(imu.sample.stamp_ns, false);
+      sequencer_.push(imu.sample);
+    }
+    return true;
+  }
+
+  /// Warns once when the two streams' stamps run on clearly different clocks.
+  void checkClocks(std::int64_t stamp_ns, bool is_scan) {
+    auto& latency = is_scan ? scan_latency_s_ : imu_latency_s_;
+    if (std::isnan(latency)) latency = nsToSeconds(bag_.recordTimeNs() - stamp_ns);
+    if (clock_checked_ || std::isnan(scan_latency_s_) || std::isnan(imu_latency_s_)) return;
+    clock_checked_ = true;
+    const double gap = scan_latency_s_ - imu_latency_s_;
+    if (std::abs(gap) > kClockMismatchS) {
+      char text[64];
+      std::snprintf(text, sizeof(text), "%.3f", gap);
+      logWarning(bag_.path() + ": point cloud stamps and IMU stamps differ by about " + text +
+                 " s relative to the record times: different clocks? (set "
+                 "sensor.time_offset_lidar_to_imu; stamps are used as recorded)");
+    }
+  }
+
+  RosbagFile bag_;
+  TopicChoice topics_;
+  PointCloudToScan clouds_;
+  LogReadStats stats_;
+  MessageSequencer sequencer_;
+  PointCloudMessage cloud_;  ///< reused between clouds
+  std::int64_t offset_ns_;   ///< LiDAR to IMU clock [ns]
+  bool ended_ = false;
+  bool started_ = false;
+  std::int64_t last_record_ns_ = 0;  ///< record time of the last message read
+  double scan_latency_s_ = std::nan("");
+  double imu_latency_s_ = std::nan("");
+  bool clock_checked_ = false;
+};
+
+}  // namespace
+
+std::unique_ptr<LogReader> openRosbagLog(const std::string& path, const Config& config) {
+  return std::make_unique<RosbagReader>(path, config);
+}
+
+}  // namespace storey

@@ -1,0 +1,345 @@
+#include "odometry/odometry.h"
+
+#include <ceres/loss_function.h>
+#include <ceres/problem.h>
+#include <ceres/solver.h>
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <chrono>
+#include <sstream>
+
+#include "common/error.h"
+#include "common/log.h"
+#include "imu/imu_factor.h"
+#include "imu/imu_initializer.h"
+#include "imu/imu_pose_table.h"
+#include "imu/so3.h"
+#include "odometry/deskew.h"
+#include "odometry/features.h"
+#include "odometry/lidar_factors.h"
+#include "odometry/motion_prior.h"
+
+namespace storey {
+
+struct LidarInertialOdometry::Frame {
+  std::int64_t scan_stamp_ns = 0;  // LiDAR clock
+  std::int64_t state_ns = 0;       // IMU clock
+  ImuStateBlocks blocks;
+  std::unique_ptr<ImuPreintegration> from_previous;  // null for the first frame
+  std::vector<Eigen::Vector3d> planes_imu, edges_imu;
+  MatchResult matches;
+  Scan deskewed;
+  OdometryScanStats stats;
+  bool in_map = false;  // features inserted into the local map
+  Eigen::Matrix<double, 9, 1> motion_prior = Eigen::Matrix<double, 9, 1>::Zero();
+
+  ImuState state() const { return blocks.toState(state_ns); }
+};
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double msSince(Clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+std::vector<Eigen::Vector3d> toImuFrame(const std::vector<Eigen::Vector3f>& points_lidar,
+                                        const Pose& T_imu_lidar) {
+  std::vector<Eigen::Vector3d> out;
+  out.reserve(points_lidar.size());
+  for (const auto& p : points_lidar) out.push_back(T_imu_lidar * p.cast<double>());
+  return out;
+}
+
+std::vector<Eigen::Vector3f> toWorld(const std::vector<Eigen::Vector3d>& points_imu,
+                                     const Pose& T_world_imu) {
+  std::vector<Eigen::Vector3f> out;
+  out.reserve(points_imu.size());
+  for (const auto& p : points_imu) out.push_back((T_world_imu * p).cast<float>());
+  return out;
+}
+
+/// Smallest eigenvalue of the marginal information of block `a` (rows/cols
+/// 0-2 or 3-5) of a 6x6 information matrix, i.e. of H_aa - H_ab H_bb^-1 H_ba;
+/// returns every eigenvalue (ascending).
+Eigen::Vector3d marginalEigenvalues(const Eigen::Matrix<double, 6, 6>& H, int a) {
+  const int b = 3 - a;
+  const Eigen::Matrix3d Haa = H.block<3, 3>(a, a), Hab = H.block<3, 3>(a, b),
+                        Hbb = H.block<3, 3>(b, b) + 1e-9 * Eigen::Matrix3d::Identity();
+  const Eigen::Matrix3d S = Haa - Hab * Hbb.ldlt().solve(Hab.transpose());
+  return Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(S).eigenvalues();
+}
+
+}  // namespace
+
+LidarInertialOdometry::LidarInertialOdometry(const Config& config, Sink sink)
+    : config_(config),
+      sink_(std::move(sink)),
+      time_offset_ns_(secondsToNs(config.sensor.time_offset_lidar_to_imu)),
+      plane_map_(config.odometry.local_map),
+      edge_map_(config.odometry.local_map) {}
+
+LidarInertialOdometry::~LidarInertialOdometry() = default;
+
+void LidarInertialOdometry::addImu(const ImuSample& sample) {
+  if (!imu_.empty() && sample.stamp_ns <= imu_.back().stamp_ns) return;  // reader drops these
+  imu_.push_back(sample);
+  tryProcess(false);
+}
+
+void LidarInertialOdometry::addScan(Scan scan) {
+  pending_.push_back(std::move(scan));
+  tryProcess(false);
+}
+
+void LidarInertialOdometry::finish() {
+  tryProcess(true);
+  while (!window_.empty()) {
+    emit(*window_.front());
+    window_.pop_front();
+  }
+}
+
+void LidarInertialOdometry::initialise() {
+  const ImuInitResult init =
+      initializeImuFromStill(imu_, config_.sensor.imu, config_.odometry.imu_init);
+  initial_state_ = init.state;
+  initialised_ = true;
+  std::ostringstream os;
+  os << "IMU initialised from " << init.stats.samples << " still samples: gyro std "
+     << init.stats.gyro_std << " rad/s, |accel| " << init.stats.mean_accel_norm << " m/s^2";
+  logInfo(os.str());
+}
+
+void LidarInertialOdometry::tryProcess(bool at_end) {
+  if (!initialised_) {
+    if (imu_.empty()) {
+      if (at_end && !pending_.empty()) throw Error("the log has point clouds but no IMU samples");
+      return;
+    }
+    const double span = nsToSeconds(imu_.back().stamp_ns - imu_.front().stamp_ns);
+    if (span < config_.odometry.imu_init.still_window && !at_end) return;
+    initialise();  // throws with an explanation when the start is not still or too short
+  }
+  while (!pending_.empty()) {
+    const Scan& scan = pending_.front();
+    const std::int64_t ref_ns = scan.stamp_ns + time_offset_ns_;
+    const std::int64_t end_ns = ref_ns + secondsToNs(std::max(0.0f, scan.timeSpan().second));
+    if (imu_.back().stamp_ns < end_ns) {
+      if (!at_end) return;
+      if (imu_.back().stamp_ns < ref_ns) {
+        drops_.after_last_imu += static_cast<std::int64_t>(pending_.size());
+        pending_.clear();
+        return;
+      }
+    }
+    if (scan.points.empty()) {
+      ++drops_.empty;
+    } else if (ref_ns <= imu_.front().stamp_ns) {
+      ++drops_.before_first_imu;
+    } else {
+      processScan(scan);
+    }
+    pending_.pop_front();
+    trimImu();
+  }
+}
+
+void LidarInertialOdometry::trimImu() {
+  if (window_.empty() || imu_.size() < 8192) return;
+  // Keep everything from one second before the newest state (the next
+  // preintegration starts there and needs a sample at or before it).
+  const std::int64_t keep_from = window_.back()->state_ns - 1'000'000'000;
+  const auto first_kept = std::lower_bound(
+      imu_.begin(), imu_.end(), keep_from,
+      [](const ImuSample& s, std::int64_t t) { return s.stamp_ns < t; });
+  if (first_kept - imu_.begin() > 1) imu_.erase(imu_.begin(), first_kept - 1);
+}
+
+void LidarInertialOdometry::processScan(const Scan& scan) {
+  const auto start = Clock::now();
+  const OdometryConfig& cfg = config_.odometry;
+  const double gravity = config_.sensor.imu.gravity;
+  auto frame = std::make_unique<Frame>();
+  frame->scan_stamp_ns = scan.stamp_ns;
+  frame->state_ns = scan.stamp_ns + time_offset_ns_;
+  frame->stats.points = static_cast<std::int64_t>(scan.points.size());
+  const std::int64_t table_end_ns =
+      frame->state_ns + std::max<std::int64_t>(secondsToNs(scan.timeSpan().second), 1'000'000);
+
+  // 1. Predict the state at the scan's reference time.
+  auto t = Clock::now();
+  ImuState previous;
+  if (window_.empty()) {
+    if (frame->state_ns <= initial_state_.stamp_ns) {
+      previous = initial_state_;  // still at the start: the initial state holds
+      previous.stamp_ns = frame->state_ns;
+    } else {
+      const ImuPreintegration from_init = ImuPreintegration::fromSamples(
+          imu_, initial_state_.stamp_ns, frame->state_ns, initial_state_.bias, config_.sensor.imu);
+      previous = from_init.predict(initial_state_);
+      previous.stamp_ns = frame->state_ns;
+    }
+    if (!origin_set_) {  // world origin at the LiDAR's start position
+      const Pose& T_imu_lidar = config_.sensor.T_imu_lidar;
+      previous.T_world_imu =
+          Pose(previous.T_world_imu.rotation(),
+               -(previous.T_world_imu.rotation() * T_imu_lidar.translation()));
+      origin_set_ = true;
+    }
+    frame->blocks = ImuStateBlocks::fromState(previous);
+  } else {
+    const Frame& last = *window_.back();
+    previous = last.state();
+    if (nsToSeconds(frame->state_ns - last.state_ns) > cfg.max_scan_gap) {
+      std::ostringstream os;
+      os << "gap of " << nsToSeconds(frame->state_ns - last.state_ns)
+         << " s between scans at t = " << nsToSeconds(frame->scan_stamp_ns)
+         << " s: the IMU alone carries the motion across it";
+      logWarning(os.str());
+    }
+    frame->from_previous = std::make_unique<ImuPreintegration>(ImuPreintegration::fromSamples(
+        imu_, last.state_ns, frame->state_ns, previous.bias, config_.sensor.imu));
+    ImuState predicted = frame->from_previous->predict(previous);
+    predicted.stamp_ns = frame->state_ns;
+    frame->blocks = ImuStateBlocks::fromState(predicted);
+  }
+  frame->stats.ms_preintegration = msSince(t);
+
+  // 2. Deskew with the IMU-propagated motion.
+  t = Clock::now();
+  const ImuPoseTable table = ImuPoseTable::fromSamples(previous, imu_, table_end_ns, gravity);
+  frame->deskewed = deskewScan(scan, table, config_.sensor);
+  frame->stats.ms_deskew = msSince(t);
+
+  // 3. Features.
+  t = Clock::now();
+  const FeatureSet features = extractFeatures(frame->deskewed, cfg.features);
+  frame->planes_imu = toImuFrame(features.planes, config_.sensor.T_imu_lidar);
+  frame->edges_imu = toImuFrame(features.edges, config_.sensor.T_imu_lidar);
+  frame->stats.plane_features = static_cast<std::int64_t>(features.planes.size());
+  frame->stats.edge_features = static_cast<std::int64_t>(features.edges.size());
+  frame->stats.feature_rejects = features.rejected;
+  frame->stats.ms_features = msSince(t);
+
+  window_.push_back(std::move(frame));
+  Frame& newest = *window_.back();
+  if (window_.size() > static_cast<std::size_t>(std::max(cfg.window_size, 2))) slide();
+  if (window_.size() >= 2 && !plane_map_.empty()) optimise(newest);
+  if (window_.size() == 1 && plane_map_.empty()) slide();  // the very first scan seeds the map
+  newest.stats.ms_total = msSince(start);
+}
+
+void LidarInertialOdometry::optimise(Frame& newest) {
+  const OdometryConfig& cfg = config_.odometry;
+  const double weight = 1.0 / cfg.point_sigma;
+  for (int round = 0; round < std::max(cfg.matching_rounds, 1); ++round) {
+    auto t = Clock::now();
+    newest.matches = matchFeatures(newest.planes_imu, newest.edges_imu,
+                                   newest.blocks.toState(newest.state_ns).T_world_imu, plane_map_,
+                                   edge_map_, cfg);
+    newest.stats.ms_matching += msSince(t);
+
+    t = Clock::now();
+    ceres::Problem problem;
+    for (auto& frame : window_) addImuStateBlocks(problem, frame->blocks);
+    Frame& oldest = *window_.front();
+    problem.SetParameterBlockConstant(oldest.blocks.pose);
+    if (round == 0) std::copy(oldest.blocks.motion, oldest.blocks.motion + 9, oldest.motion_prior.data());
+    Eigen::Matrix<double, 9, 1> prior_sigma;
+    prior_sigma << Eigen::Vector3d::Constant(cfg.prior_velocity_sigma),
+        Eigen::Vector3d::Constant(cfg.prior_gyro_bias_sigma),
+        Eigen::Vector3d::Constant(cfg.prior_accel_bias_sigma);
+    problem.AddResidualBlock(new MotionPriorFactor(oldest.motion_prior, prior_sigma), nullptr,
+                             oldest.blocks.motion);
+    for (std::size_t i = 1; i < window_.size(); ++i) {
+      Frame& previous = *window_[i - 1];
+      Frame& frame = *window_[i];
+      const ImuBias bias = previous.state().bias;
+      if (frame.from_previous->needsRepropagation(bias, cfg.preintegration))
+        frame.from_previous->repropagate(bias);
+      problem.AddResidualBlock(new ImuFactor(*frame.from_previous), nullptr, previous.blocks.pose,
+                               previous.blocks.motion, frame.blocks.pose, frame.blocks.motion);
+    }
+    ceres::LossFunction* loss = new ceres::HuberLoss(cfg.huber_width * weight);
+    for (std::size_t i = 1; i < window_.size(); ++i) {
+      Frame& frame = *window_[i];
+      for (const PlaneMatch& m : frame.matches.planes)
+        problem.AddResidualBlock(new PointToPlaneFactor(m.y_imu, m.n_world, m.d_world, weight), loss,
+                                 frame.blocks.pose);
+      for (const LineMatch& m : frame.matches.lines)
+        problem.AddResidualBlock(new PointToLineFactor(m.y_imu, m.a_world, m.u_world, weight), loss,
+                                 frame.blocks.pose);
+    }
+    ceres::Solver::Options options;
+    options.linear_solver_type = ceres::DENSE_NORMAL_CHOLESKY;
+    options.max_num_iterations = std::max(cfg.max_iterations, 1);
+    options.num_threads = 1;
+    options.logging_type = ceres::SILENT;
+    options.minimizer_progress_to_stdout = false;
+    ceres::Solver::Summary summary;
+    ceres::Solve(options, &problem, &summary);
+    newest.stats.solver_iterations += static_cast<int>(summary.iterations.size());
+    newest.stats.ms_optimisation += msSince(t);
+  }
+  newest.stats.plane_matches = static_cast<std::int64_t>(newest.matches.planes.size());
+  newest.stats.line_matches = static_cast<std::int64_t>(newest.matches.lines.size());
+  newest.stats.match_rejects = newest.matches.rejected;
+
+  // Degeneracy: LiDAR-only information of the newest pose, in the world-frame
+  // tangent [dp, dtheta]: a plane match contributes w [n^T, (R y x n)^T].
+  Eigen::Matrix<double, 6, 6> H = Eigen::Matrix<double, 6, 6>::Zero();
+  const Pose T_world_imu = newest.blocks.toState(newest.state_ns).T_world_imu;
+  for (const PlaneMatch& m : newest.matches.planes) {
+    Eigen::Matrix<double, 1, 6> J;
+    J << m.n_world.transpose(), (T_world_imu.rotation() * m.y_imu).cross(m.n_world).transpose();
+    H += weight * weight * J.transpose() * J;
+  }
+  for (const LineMatch& m : newest.matches.lines) {
+    Eigen::Matrix<double, 3, 6> J;
+    const Eigen::Matrix3d U = -so3::skew(m.u_world);
+    J << U, -U * so3::skew(T_world_imu.rotation() * m.y_imu);
+    H += weight * weight * J.transpose() * J;
+  }
+  const Eigen::Vector3d translation_eigen = marginalEigenvalues(H, 0);
+  const Eigen::Vector3d rotation_eigen = marginalEigenvalues(H, 3);
+  const auto stdOf = [](double eigenvalue) { return 1.0 / std::sqrt(std::max(eigenvalue, 1e-12)); };
+  newest.stats.lidar_translation_std_max = stdOf(translation_eigen(0));
+  for (int i = 0; i < 3; ++i) {
+    if (stdOf(translation_eigen(i)) > cfg.degenerate_translation_std)
+      ++newest.stats.degenerate_translation_directions;
+    if (stdOf(rotation_eigen(i)) > cfg.degenerate_rotation_std)
+      ++newest.stats.degenerate_rotation_directions;
+  }
+}
+
+void LidarInertialOdometry::slide() {
+  Frame& oldest = *window_.front();
+  if (!oldest.in_map) {
+    const Pose T_world_imu = oldest.state().T_world_imu;
+    plane_map_.insert(toWorld(oldest.planes_imu, T_world_imu));
+    edge_map_.insert(toWorld(oldest.edges_imu, T_world_imu));
+    const Eigen::Vector3d sensor_world = T_world_imu.translation();
+    plane_map_.removeFar(sensor_world);
+    edge_map_.removeFar(sensor_world);
+    oldest.in_map = true;
+  }
+  if (window_.size() == 1) return;  // the first frame stays as the window's fixed anchor
+  emit(oldest);
+  window_.pop_front();
+}
+
+void LidarInertialOdometry::emit(Frame& frame) {
+  if (!sink_) return;
+  OdometryResult result;
+  result.scan_stamp_ns = frame.scan_stamp_ns;
+  result.state = frame.state();
+  result.T_world_lidar = result.state.T_world_imu * config_.sensor.T_imu_lidar;
+  result.deskewed = std::move(frame.deskewed);
+  result.stats = frame.stats;
+  sink_(std::move(result));
+}
+
+}  // namespace storey

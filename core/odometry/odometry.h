@@ -1,0 +1,110 @@
+#pragma once
+/// Tightly coupled LiDAR-inertial odometry (the front end; section IV of the
+/// reference paper, docs/method/odometry.md).
+///
+/// Per scan: IMU preintegration from the previous state predicts the state at
+/// the scan's reference time; the scan is deskewed with the IMU-propagated
+/// motion; LOAM edge and planar features are extracted and associated with a
+/// voxel-hash local map (point-to-line, point-to-plane); then the states of a
+/// sliding window (pose, velocity, biases; the oldest held fixed) are solved
+/// jointly with Ceres from the IMU factors between them and the LiDAR
+/// residuals of their scans, robust and covariance-weighted. A scan leaves the
+/// window with its final estimate: its features enter the local map and it is
+/// handed to the sink.
+#include <cstdint>
+#include <deque>
+#include <functional>
+#include <memory>
+#include <vector>
+
+#include "config/config.h"
+#include "imu/imu_preintegration.h"
+#include "imu/imu_state.h"
+#include "imu/imu_state_blocks.h"
+#include "odometry/odometry_config.h"
+#include "odometry/scan_matcher.h"
+#include "odometry/voxel_map.h"
+#include "types/imu_sample.h"
+#include "types/pose.h"
+#include "types/scan.h"
+
+namespace storey {
+
+/// What happened to one scan (summed into the run report).
+struct OdometryScanStats {
+  std::int64_t points = 0;
+  std::int64_t edge_features = 0;
+  std::int64_t plane_features = 0;
+  std::int64_t plane_matches = 0;
+  std::int64_t line_matches = 0;
+  std::array<std::int64_t, static_cast<std::size_t>(FeatureReject::kCount)> feature_rejects{};
+  std::array<std::int64_t, static_cast<std::size_t>(MatchReject::kCount)> match_rejects{};
+  int degenerate_translation_directions = 0;  ///< LiDAR-only std above the threshold
+  int degenerate_rotation_directions = 0;
+  double lidar_translation_std_max = 0.0;  ///< largest LiDAR-only std of translation [m]
+  int solver_iterations = 0;
+  // Wall-clock time of each stage for this scan [ms].
+  double ms_preintegration = 0.0, ms_deskew = 0.0, ms_features = 0.0, ms_matching = 0.0,
+         ms_optimisation = 0.0, ms_total = 0.0;
+};
+
+/// The odometry's estimate of one scan, final once it left the window.
+struct OdometryResult {
+  std::int64_t scan_stamp_ns = 0;  ///< the scan's header stamp (LiDAR clock) [ns]
+  ImuState state;                  ///< IMU state at the scan's reference time (IMU clock)
+  Pose T_world_lidar;              ///< LiDAR pose at the reference time
+  Scan deskewed;                   ///< the scan's points at the reference time, LiDAR frame
+  OdometryScanStats stats;
+};
+
+/// Why scans were not used (besides errors); counts in the run report.
+struct OdometryDrops {
+  std::int64_t before_first_imu = 0;  ///< scan earlier than the first IMU sample
+  std::int64_t after_last_imu = 0;    ///< IMU data end before the scan
+  std::int64_t empty = 0;             ///< scan without points
+};
+
+class LidarInertialOdometry {
+ public:
+  using Sink = std::function<void(OdometryResult&&)>;
+
+  /// `sink` receives every scan's final result, in time order.
+  LidarInertialOdometry(const Config& config, Sink sink);
+  ~LidarInertialOdometry();
+
+  /// Feed the log in time order (IMU samples by stamp, scans by stamp +
+  /// time offset); scans wait until the IMU covers them.
+  void addImu(const ImuSample& sample);
+  void addScan(Scan scan);
+  /// End of the log: processes what the IMU covers and flushes the window.
+  void finish();
+
+  const OdometryDrops& drops() const { return drops_; }
+  bool initialised() const { return initialised_; }
+  const ImuState& initialState() const { return initial_state_; }
+
+ private:
+  struct Frame;
+  void tryProcess(bool at_end);
+  void initialise();
+  void processScan(const Scan& scan);
+  void optimise(Frame& newest);
+  void slide();
+  void emit(Frame& frame);
+  void trimImu();
+
+  Config config_;
+  Sink sink_;
+  std::int64_t time_offset_ns_ = 0;
+  std::vector<ImuSample> imu_;
+  std::deque<Scan> pending_;
+  bool initialised_ = false;
+  bool origin_set_ = false;
+  ImuState initial_state_;
+  std::deque<std::unique_ptr<Frame>> window_;
+  VoxelMap plane_map_;
+  VoxelMap edge_map_;
+  OdometryDrops drops_;
+};
+
+}  // namespace storey

@@ -1,0 +1,36 @@
+#pragma once
+/// Parameters of the LiDAR-inertial odometry (front end), defaults in the
+/// struct, units beside each field.
+#include "imu/imu_config.h"
+#include "odometry/features.h"
+#include "odometry/voxel_map.h"
+
+namespace storey {
+
+struct OdometryConfig {
+  FeatureConfig features;
+  VoxelMapConfig local_map;
+  ImuInitConfig imu_init;
+  ImuPreintegrationConfig preintegration;
+
+  int window_size = 3;             ///< states optimised together (oldest held fixed) [>= 2]
+  int matching_rounds = 2;         ///< feature association rounds per scan [>= 1]
+  int max_iterations = 4;          ///< Ceres iterations per round [>= 1]
+  int neighbours = 5;              ///< map points used to fit a plane or a line [>= 3]
+  double max_neighbour_distance = 1.0;  ///< farthest map neighbour of a feature [m]
+  double plane_fit_tolerance = 0.1;     ///< every neighbour within this of its plane [m]
+  double line_eigen_ratio = 3.0;        ///< a line's neighbours: largest eigenvalue > ratio x second [-]
+  double max_point_distance = 1.0;      ///< matches farther than this from their plane/line
+                                        ///< at the predicted pose are rejected [m]
+  double point_sigma = 0.05;       ///< uncertainty of a feature point and its fitted plane/line [m]
+  double huber_width = 0.1;        ///< robust (Huber) loss: quadratic up to this distance [m]
+  double degenerate_translation_std = 0.02;  ///< LiDAR-only std above which a direction is
+                                             ///< reported degenerate [m]
+  double degenerate_rotation_std = 0.005;    ///< same for rotations [rad]
+  double prior_velocity_sigma = 0.05;     ///< prior on the oldest state's velocity [m/s]
+  double prior_gyro_bias_sigma = 1e-3;    ///< prior on its gyro bias [rad/s]
+  double prior_accel_bias_sigma = 1e-2;   ///< prior on its accel bias [m/s^2]
+  double max_scan_gap = 0.5;       ///< a longer time between scans is an error [s]
+};
+
+}  // namespace storey

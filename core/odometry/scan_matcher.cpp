@@ -1,0 +1,68 @@
+#include "odometry/scan_matcher.h"
+
+#include <cmath>
+
+namespace storey {
+
+const char* toString(MatchReject reason) {
+  switch (reason) {
+    case MatchReject::kTooFewNeighbours: return "too few map neighbours";
+    case MatchReject::kNotPlanar: return "neighbours not planar";
+    case MatchReject::kNotALine: return "neighbours not a line";
+    case MatchReject::kTooFar: return "too far from plane or line";
+    case MatchReject::kCount: break;
+  }
+  return "unknown";
+}
+
+MatchResult matchFeatures(const std::vector<Eigen::Vector3d>& planes_imu,
+                          const std::vector<Eigen::Vector3d>& edges_imu, const Pose& T_world_imu,
+                          const VoxelMap& plane_map, const VoxelMap& edge_map,
+                          const OdometryConfig& config) {
+  MatchResult result;
+  const auto reject = [&](MatchReject reason) { ++result.rejected[static_cast<std::size_t>(reason)]; };
+  const float max_neighbour = static_cast<float>(config.max_neighbour_distance);
+  result.planes.reserve(planes_imu.size());
+  for (const Eigen::Vector3d& y : planes_imu) {
+    const Eigen::Vector3d x = T_world_imu * y;
+    const std::vector<Eigen::Vector3f> neighbours =
+        plane_map.nearest(x.cast<float>(), config.neighbours, max_neighbour);
+    if (static_cast<int>(neighbours.size()) < config.neighbours) {
+      reject(MatchReject::kTooFewNeighbours);
+      continue;
+    }
+    const PlaneFit fit = fitPlane(neighbours, config.plane_fit_tolerance);
+    if (!fit.valid) {
+      reject(MatchReject::kNotPlanar);
+      continue;
+    }
+    if (std::abs(fit.normal.dot(x) - fit.d) > config.max_point_distance) {
+      reject(MatchReject::kTooFar);
+      continue;
+    }
+    result.planes.push_back({y, fit.normal, fit.d});
+  }
+  result.lines.reserve(edges_imu.size());
+  for (const Eigen::Vector3d& y : edges_imu) {
+    const Eigen::Vector3d x = T_world_imu * y;
+    const std::vector<Eigen::Vector3f> neighbours =
+        edge_map.nearest(x.cast<float>(), config.neighbours, max_neighbour);
+    if (static_cast<int>(neighbours.size()) < config.neighbours) {
+      reject(MatchReject::kTooFewNeighbours);
+      continue;
+    }
+    const LineFit fit = fitLine(neighbours, config.line_eigen_ratio);
+    if (!fit.valid) {
+      reject(MatchReject::kNotALine);
+      continue;
+    }
+    if ((x - fit.point).cross(fit.direction).norm() > config.max_point_distance) {
+      reject(MatchReject::kTooFar);
+      continue;
+    }
+    result.lines.push_back({y, fit.point, fit.direction});
+  }
+  return result;
+}
+
+}  // namespace storey

@@ -1,0 +1,51 @@
+#pragma once
+/// Data association of the odometry: each feature point (IMU frame) is placed
+/// in the world with the current pose estimate, its nearest map points are
+/// found, and a plane (planar features) or a line (edge features) is fitted
+/// to them. What cannot be matched is counted by reason.
+#include <Eigen/Core>
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "odometry/odometry_config.h"
+#include "odometry/voxel_map.h"
+#include "types/pose.h"
+
+namespace storey {
+
+struct PlaneMatch {
+  Eigen::Vector3d y_imu;    ///< feature point in the IMU frame [m]
+  Eigen::Vector3d n_world;  ///< unit normal of the fitted plane
+  double d_world;           ///< plane n . x = d [m]
+};
+
+struct LineMatch {
+  Eigen::Vector3d y_imu;    ///< feature point in the IMU frame [m]
+  Eigen::Vector3d a_world;  ///< a point of the fitted line [m]
+  Eigen::Vector3d u_world;  ///< unit direction of the line
+};
+
+enum class MatchReject : std::uint8_t {
+  kTooFewNeighbours = 0,  ///< fewer than `neighbours` map points within max_neighbour_distance
+  kNotPlanar,             ///< neighbours do not fit a plane within plane_fit_tolerance
+  kNotALine,              ///< neighbours are not elongated enough for a line
+  kTooFar,                ///< point farther than max_point_distance from its plane/line
+  kCount
+};
+const char* toString(MatchReject reason);
+
+struct MatchResult {
+  std::vector<PlaneMatch> planes;
+  std::vector<LineMatch> lines;
+  std::array<std::int64_t, static_cast<std::size_t>(MatchReject::kCount)> rejected{};
+};
+
+/// Associates planar features with `plane_map` and edge features with
+/// `edge_map` (both world frame), features given in the IMU frame at T_world_imu.
+MatchResult matchFeatures(const std::vector<Eigen::Vector3d>& planes_imu,
+                          const std::vector<Eigen::Vector3d>& edges_imu, const Pose& T_world_imu,
+                          const VoxelMap& plane_map, const VoxelMap& edge_map,
+                          const OdometryConfig& config);
+
+}  // namespace storey

@@ -1,0 +1,141 @@
+#include "pipeline/run_report.h"
+
+#include <nlohmann/json.hpp>
+
+#include "common/statistics.h"
+#include "trajectory/drift.h"
+
+namespace storey {
+
+struct RunReportBuilder::Data {
+  Config config;
+  nlohmann::json input, initialisation, drift;
+  double wall_seconds = 0.0;
+  double log_seconds = 0.0;
+  std::int64_t scans = 0;
+  std::vector<double> ms_preintegration, ms_deskew, ms_features, ms_matching, ms_optimisation,
+      ms_total, edges, planes, plane_matches, line_matches, iterations;
+  std::array<std::int64_t, static_cast<std::size_t>(FeatureReject::kCount)> feature_rejects{};
+  std::array<std::int64_t, static_cast<std::size_t>(MatchReject::kCount)> match_rejects{};
+  std::int64_t degenerate_scans = 0;
+  std::int64_t degenerate_translation_directions = 0;
+  std::int64_t degenerate_rotation_directions = 0;
+};
+
+RunReportBuilder::RunReportBuilder(const Config& config) : data_(std::make_unique<Data>()) {
+  data_->config = config;
+}
+RunReportBuilder::~RunReportBuilder() = default;
+
+void RunReportBuilder::addScan(const OdometryResult& scan) {
+  Data& d = *data_;
+  const OdometryScanStats& s = scan.stats;
+  ++d.scans;
+  d.ms_preintegration.push_back(s.ms_preintegration);
+  d.ms_deskew.push_back(s.ms_deskew);
+  d.ms_features.push_back(s.ms_features);
+  d.ms_matching.push_back(s.ms_matching);
+  d.ms_optimisation.push_back(s.ms_optimisation);
+  d.ms_total.push_back(s.ms_total);
+  d.edges.push_back(static_cast<double>(s.edge_features));
+  d.planes.push_back(static_cast<double>(s.plane_features));
+  d.plane_matches.push_back(static_cast<double>(s.plane_matches));
+  d.line_matches.push_back(static_cast<double>(s.line_matches));
+  d.iterations.push_back(s.solver_iterations);
+  for (std::size_t i = 0; i < d.feature_rejects.size(); ++i) d.feature_rejects[i] += s.feature_rejects[i];
+  for (std::size_t i = 0; i < d.match_rejects.size(); ++i) d.match_rejects[i] += s.match_rejects[i];
+  if (s.degenerate_translation_directions > 0 || s.degenerate_rotation_directions > 0)
+    ++d.degenerate_scans;
+  d.degenerate_translation_directions += s.degenerate_translation_directions;
+  d.degenerate_rotation_directions += s.degenerate_rotation_directions;
+}
+
+void RunReportBuilder::setInput(const std::string& log_path, const LogReadStats& stats,
+                                const OdometryDrops& drops) {
+  nlohmann::json dropped = nlohmann::json::object();
+  for (const auto& [reason, count] : stats.dropped) dropped[reason] = count;
+  data_->input = {{"log", log_path},
+                  {"scans_read", stats.scans},
+                  {"imu_samples_read", stats.imu_samples},
+                  {"points_read", stats.points},
+                  {"dropped_by_reader", dropped},
+                  {"scans_not_processed",
+                   {{"before_first_imu_sample", drops.before_first_imu},
+                    {"after_last_imu_sample", drops.after_last_imu},
+                    {"empty", drops.empty}}}};
+}
+
+void RunReportBuilder::setInitialisation(const ImuState& s) {
+  const Eigen::Vector3d up_imu = s.T_world_imu.rotation().conjugate() * Eigen::Vector3d::UnitZ();
+  data_->initialisation = {
+      {"gyro_bias_rad_s", {s.bias.gyro.x(), s.bias.gyro.y(), s.bias.gyro.z()}},
+      {"accel_bias_m_s2", {s.bias.accel.x(), s.bias.accel.y(), s.bias.accel.z()}},
+      {"up_in_imu_frame", {up_imu.x(), up_imu.y(), up_imu.z()}}};
+}
+
+void RunReportBuilder::setTrajectory(const Trajectory& trajectory) {
+  const EndPointDrift d = endPointDrift(trajectory);
+  data_->drift = {{"dX_m", d.dx},         {"dY_m", d.dy},           {"dZ_m", d.dz},
+                  {"dXYZ_m", d.dxyz},     {"dYaw_rad", d.dyaw},     {"dPitch_rad", d.dpitch},
+                  {"dRoll_rad", d.droll}, {"dAngle_rad", d.dangle}, {"path_length_m", d.path_length},
+                  {"dXYZ_percent_of_path", d.percent_of_path()}};
+  if (trajectory.size() >= 2) data_->log_seconds = trajectory.back().time - trajectory.front().time;
+}
+
+void RunReportBuilder::setWallTime(double seconds) { data_->wall_seconds = seconds; }
+
+namespace {
+
+nlohmann::json summary(const std::vector<double>& samples) {
+  return {{"median", quantile(samples, 0.5)},
+          {"p95", quantile(samples, 0.95)},
+          {"mean", mean(samples)},
+          {"max", quantile(samples, 1.0)}};
+}
+
+}  // namespace
+
+std::string RunReportBuilder::json() const {
+  const Data& d = *data_;
+  nlohmann::json feature_rejects = nlohmann::json::object();
+  for (std::size_t i = 0; i < d.feature_rejects.size(); ++i)
+    feature_rejects[toString(static_cast<FeatureReject>(i))] = d.feature_rejects[i];
+  nlohmann::json match_rejects = nlohmann::json::object();
+  for (std::size_t i = 0; i < d.match_rejects.size(); ++i)
+    match_rejects[toString(static_cast<MatchReject>(i))] = d.match_rejects[i];
+  nlohmann::json report;
+  report["storey_version"] = "0.1.0";
+  report["input"] = d.input;
+  report["imu_initialisation"] = d.initialisation;
+  report["odometry"] = {
+      {"scans", d.scans},
+      {"timing_ms",
+       {{"preintegration", summary(d.ms_preintegration)},
+        {"deskew", summary(d.ms_deskew)},
+        {"features", summary(d.ms_features)},
+        {"matching", summary(d.ms_matching)},
+        {"optimisation", summary(d.ms_optimisation)},
+        {"total_per_scan", summary(d.ms_total)}}},
+      {"features_per_scan", {{"edges", summary(d.edges)}, {"planes", summary(d.planes)}}},
+      {"matches_per_scan",
+       {{"point_to_plane", summary(d.plane_matches)}, {"point_to_line", summary(d.line_matches)}}},
+      {"rejected_feature_points", feature_rejects},
+      {"rejected_matches", match_rejects},
+      {"degenerate_scans", d.degenerate_scans},
+      {"degenerate_directions",
+       {{"translation", d.degenerate_translation_directions},
+        {"rotation", d.degenerate_rotation_directions}}},
+      {"solver_iterations_per_scan", summary(d.iterations)}};
+  report["backend"] = {
+      {"srp_requested", d.config.backend.srp},
+      {"status", d.config.backend.srp
+                     ? "not implemented yet: trajectory.tum is the odometry"
+                     : "switched off (--no-srp): trajectory.tum is the odometry"}};
+  report["end_point_drift"] = d.drift;
+  report["log_duration_s"] = d.log_seconds;
+  report["wall_time_s"] = d.wall_seconds;
+  report["real_time_factor"] = d.wall_seconds > 0 ? d.log_seconds / d.wall_seconds : 0.0;
+  return report.dump(2);
+}
+
+}  // namespace storey

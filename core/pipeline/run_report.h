@@ -1,0 +1,33 @@
+#pragma once
+/// The run report (report.json): input counts and drops by reason, IMU
+/// initialisation, per-stage timings (median, p95, mean), feature and match
+/// counts with rejections by reason, degenerate scans, end-point drift.
+#include <memory>
+#include <string>
+
+#include "config/config.h"
+#include "imu/imu_state.h"
+#include "io/log_reader.h"
+#include "odometry/odometry.h"
+#include "trajectory/tum.h"
+
+namespace storey {
+
+class RunReportBuilder {
+ public:
+  explicit RunReportBuilder(const Config& config);
+  ~RunReportBuilder();
+  void addScan(const OdometryResult& scan);
+  void setInput(const std::string& log_path, const LogReadStats& stats, const OdometryDrops& drops);
+  void setInitialisation(const ImuState& initial_state);
+  void setTrajectory(const Trajectory& trajectory);
+  void setWallTime(double seconds);
+  /// The report as pretty-printed JSON.
+  std::string json() const;
+
+ private:
+  struct Data;
+  std::unique_ptr<Data> data_;
+};
+
+}  // namespace storey

@@ -1,0 +1,489 @@
+#include "sim/building.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "common/error.h"
+#include "sim/random.h"
+
+namespace storey::sim {
+namespace {
+
+using Eigen::Vector2d;
+using Eigen::Vector3d;
+
+constexpr double kPartitionThickness = 0.1;  ///< wall between the two flights [m]
+constexpr double kLandingThickness = 0.2;    ///< half-landing slab [m]
+constexpr double kStepUnderside = 0.12;      ///< concrete below each step [m]
+constexpr double kEndClearance = 1.0;        ///< U-turn apex to the corridor end wall [m]
+constexpr double kGlassThickness = 0.02;     ///< [m]
+
+/// An opening in a wall, in wall coordinates: u along the wall, z absolute.
+struct Opening {
+  double u0, u1, z0, z1;
+  bool glass;
+};
+
+struct Rect {
+  double x0, y0, x1, y1;
+};
+
+/// `outer` minus `hole` as up to four rectangles (hole clipped to outer).
+std::vector<Rect> rectMinus(const Rect& outer, const Rect& hole) {
+  const Rect h{std::max(outer.x0, hole.x0), std::max(outer.y0, hole.y0), std::min(outer.x1, hole.x1),
+               std::min(outer.y1, hole.y1)};
+  if (h.x0 >= h.x1 || h.y0 >= h.y1) return {outer};
+  return {{outer.x0, outer.y0, outer.x1, h.y0},
+          {outer.x0, h.y1, outer.x1, outer.y1},
+          {outer.x0, h.y0, h.x0, h.y1},
+          {h.x1, h.y0, outer.x1, h.y1}};
+}
+
+/// One flight of stairs: per storey, the numbers the route and mesh share.
+struct StairStorey {
+  int risers = 0;           ///< total risers of the storey
+  int risers_first = 0;     ///< in flight 1 (up to the half landing)
+  double riser = 0.0;       ///< actual riser [m]
+  double run_first = 0.0;   ///< horizontal run of flight 1 [m]
+  double run_second = 0.0;  ///< of flight 2 [m]
+  double landing_z = 0.0;   ///< half landing height above the storey floor [m]
+};
+
+class Generator {
+ public:
+  explicit Generator(const BuildingSpec& spec)
+      : spec_(spec), b_(spec.building), rng_(spec.seed, 0x5eed0001ULL) {}
+
+  Building run() {
+    layout();
+    for (int k = 0; k <= storeyCount(); ++k) addSlab(k);
+    for (int k = 0; k < storeyCount(); ++k) {
+      addStoreyWalls(k);
+      addCorridorClutter(k);
+      addRoomFurniture(k);
+      if (k + 1 < storeyCount()) addStairs(k);
+      out_.storeys.push_back({k, z_[k], z_[k + 1] - b_.slab_thickness});
+    }
+    addRoute();
+    return std::move(out_);
+  }
+
+ private:
+  int storeyCount() const { return static_cast<int>(b_.storey_heights.size()); }
+  bool hasStairs() const { return storeyCount() > 1; }
+
+  void layout() {
+    z_.assign(1, 0.0);
+    for (double h : b_.storey_heights) z_.push_back(z_.back() + h);
+    L_ = b_.corridor_length;
+    yc_ = b_.corridor_width / 2;
+    wt_ = b_.wall_thickness;
+    const StairwellSpec& s = b_.stairwell;
+    double run_max = 0.0;
+    for (int k = 0; k + 1 < storeyCount(); ++k) {
+      StairStorey st;
+      const double h = b_.storey_heights[k];
+      st.risers = std::max(4, static_cast<int>(std::lround(h / s.riser)));
+      st.riser = h / st.risers;
+      st.risers_first = (st.risers + 1) / 2;
+      st.run_first = (st.risers_first - 1) * s.tread;
+      st.run_second = (st.risers - st.risers_first - 1) * s.tread;
+      st.landing_z = st.risers_first * st.riser;
+      run_max = std::max(run_max, st.run_first);
+      stairs_.push_back(st);
+    }
+    y_flights_ = yc_ + s.floor_landing_depth;
+    y_back_ = y_flights_ + run_max + s.half_landing_depth;
+    y_north_ = yc_ + std::max(b_.room_depth, hasStairs() ? y_back_ - yc_ : 0.0);
+    y_south_ = -yc_ - b_.room_depth;
+    const double half = s.width / 2;
+    xs_ = std::clamp(s.position * L_, half + 2.5, L_ - half - 1.2);
+    if (hasStairs() && L_ < s.width + 3.7)
+      throw Error(spec_.source + ": key 'building.corridor_length' is too short for the stairwell");
+    x_east_lane_ = xs_ + (kPartitionThickness / 2 + half - wt_ / 2) / 2;
+    x_west_lane_ = xs_ - (kPartitionThickness / 2 + half - wt_ / 2) / 2;
+    x_turn_west_ = wt_ / 2 + kEndClearance;
+    x_turn_east_ = L_ - wt_ / 2 - kEndClearance;
+    x_start_ = std::max(spec_.robot.start_offset, x_turn_west_ + 1.2);
+    if (x_start_ > std::min(x_turn_east_, hasStairs() ? x_west_lane_ : x_turn_east_) - 1.5)
+      throw Error(spec_.source + ": key 'robot.start_offset' leaves no room to walk east of the start");
+
+    // Rooms: south side over the whole corridor, north side on both sides of the stairwell.
+    splitRooms(0.0, L_, south_rooms_);
+    if (hasStairs()) {
+      splitRooms(0.0, xs_ - half, north_rooms_);
+      splitRooms(xs_ + half, L_, north_rooms_);
+    } else {
+      splitRooms(0.0, L_, north_rooms_);
+    }
+    for (auto* rooms : {&south_rooms_, &north_rooms_}) {
+      for (Room& r : *rooms) {
+        const double w = r.x1 - r.x0;
+        const double offset = std::max(0.45, 0.25 * w - b_.door_width / 2);
+        r.door0 = r.x0 + wt_ / 2 + offset;
+        r.door1 = r.door0 + b_.door_width;
+        r.glass_front = rng_.uniform() < b_.glass_front_fraction;
+      }
+    }
+  }
+
+  struct Room {
+    double x0, x1;        ///< partition wall centrelines
+    double door0, door1;  ///< door opening along x
+    bool glass_front;
+  };
+
+  void splitRooms(double x0, double x1, std::vector<Room>& rooms) {
+    const double length = x1 - x0;
+    if (length < 2.5) return;
+    const int count = std::max(1, static_cast<int>(std::lround(length / b_.room_width)));
+    for (int i = 0; i < count; ++i)
+      rooms.push_back({x0 + length * i / count, x0 + length * (i + 1) / count, 0, 0, false});
+  }
+
+  // ---- mesh helpers -------------------------------------------------------
+
+  /// Wall along x (at y = c) or along y (at x = c) from u = a to b, z in [z0, z1], with openings.
+  void addWall(bool along_x, double c, double a, double b, double z0, double z1,
+               std::vector<Opening> openings, Surface surface = Surface::kWall) {
+    std::sort(openings.begin(), openings.end(),
+              [](const Opening& l, const Opening& r) { return l.u0 < r.u0; });
+    auto box = [&](double u0, double u1, double zz0, double zz1, double thickness, Surface s) {
+      if (u1 - u0 < 1e-6 || zz1 - zz0 < 1e-6) return;
+      if (along_x)
+        out_.mesh.addBox(Vector3d(u0, c - thickness / 2, zz0), Vector3d(u1, c + thickness / 2, zz1), s);
+      else
+        out_.mesh.addBox(Vector3d(c - thickness / 2, u0, zz0), Vector3d(c + thickness / 2, u1, zz1), s);
+    };
+    double u = a;
+    for (const Opening& o : openings) {
+      const double u0 = std::max(o.u0, u), u1 = std::min(o.u1, b);
+      if (u1 <= u0) continue;
+      box(u, u0, z0, z1, wt_, surface);
+      box(u0, u1, z0, o.z0, wt_, surface);
+      box(u0, u1, o.z1, z1, wt_, surface);
+      if (o.glass) box(u0, u1, o.z0, o.z1, kGlassThickness, Surface::kGlass);
+      u = u1;
+    }
+    box(u, b, z0, z1, wt_, surface);
+  }
+
+  void addSlab(int k) {
+    const double top = z_[k], t = b_.slab_thickness;
+    const Rect outer{-wt_ / 2, y_south_ - wt_ / 2, L_ + wt_ / 2, y_north_ + wt_ / 2};
+    std::vector<Rect> parts{outer};
+    if (hasStairs() && k > 0 && k < storeyCount()) {
+      const double half = b_.stairwell.width / 2;
+      parts = rectMinus(outer, {xs_ - half + wt_ / 2, y_flights_, xs_ + half - wt_ / 2, y_back_ - wt_ / 2});
+    }
+    for (const Rect& r : parts) {
+      // Upper half reads as floor, lower half as ceiling.
+      out_.mesh.addBox(Vector3d(r.x0, r.y0, top - t / 2), Vector3d(r.x1, r.y1, top), Surface::kFloor);
+      out_.mesh.addBox(Vector3d(r.x0, r.y0, top - t), Vector3d(r.x1, r.y1, top - t / 2), Surface::kCeiling);
+    }
+  }
+
+  void addStoreyWalls(int k) {
+    const double zf = z_[k], t = b_.slab_thickness;
+    const double z0 = zf - t, z1 = z_[k + 1] - t;  // walls pass through the slab below
+    const double ceiling = z1;
+    const double half = b_.stairwell.width / 2;
+    const double window_z0 = zf + b_.window_sill, window_z1 = window_z0 + b_.window_height;
+
+    // Outer walls with windows at room centres; corridor ends glazed.
+    auto windows = [&](const std::vector<Room>& rooms) {
+      std::vector<Opening> o;
+      for (const Room& r : rooms) {
+        const double m = (r.x0 + r.x1) / 2;
+        o.push_back({m - b_.window_width / 2, m + b_.window_width / 2, window_z0, window_z1, true});
+      }
+      return o;
+    };
+    addWall(true, y_south_, -wt_ / 2, L_ + wt_ / 2, z0, z1, windows(south_rooms_));
+    addWall(true, y_north_, -wt_ / 2, L_ + wt_ / 2, z0, z1, windows(north_rooms_));
+    const double glass_top = std::min(zf + 2.5, ceiling - 0.15);
+    const std::vector<Opening> corridor_end{{-yc_ + 0.35, yc_ - 0.35, zf + 0.05, glass_top, true}};
+    addWall(false, 0.0, y_south_ + wt_ / 2, y_north_ - wt_ / 2, z0, z1, corridor_end);
+    addWall(false, L_, y_south_ + wt_ / 2, y_north_ - wt_ / 2, z0, z1, corridor_end);
+
+    // Corridor walls: doors, glass fronts, the stairwell entrance.
+    auto corridorOpenings = [&](const std::vector<Room>& rooms) {
+      std::vector<Opening> o;
+      for (const Room& r : rooms) {
+        o.push_back({r.door0, r.door1, zf, zf + b_.door_height, false});
+        if (r.glass_front) {
+          const double g0 = r.x0 + wt_ / 2 + 0.2, g1 = r.x1 - wt_ / 2 - 0.2;
+          const double gz0 = zf + 0.1, gz1 = std::min(zf + 2.6, ceiling - 0.1);
+          if (r.door0 - 0.1 - g0 > 0.3) o.push_back({g0, r.door0 - 0.1, gz0, gz1, true});
+          if (g1 - (r.door1 + 0.1) > 0.3) o.push_back({r.door1 + 0.1, g1, gz0, gz1, true});
+        }
+      }
+      return o;
+    };
+    std::vector<Opening> north = corridorOpenings(north_rooms_);
+    if (hasStairs()) north.push_back({xs_ - half + wt_ / 2, xs_ + half - wt_ / 2, zf, zf + 2.3, false});
+    addWall(true, -yc_, 0.0, L_, z0, z1, corridorOpenings(south_rooms_));
+    addWall(true, yc_, 0.0, L_, z0, z1, north);
+
+    // Partitions between rooms.
+    for (std::size_t i = 1; i < south_rooms_.size(); ++i)
+      addWall(false, south_rooms_[i].x0, y_south_, -yc_, z0, z1, {});
+    for (std::size_t i = 1; i < north_rooms_.size(); ++i) {
+      if (hasStairs() && std::abs(north_rooms_[i].x0 - (xs_ + half)) < 1e-9) continue;
+      addWall(false, north_rooms_[i].x0, yc_, y_north_, z0, z1, {});
+    }
+
+    if (hasStairs()) {
+      addWall(false, xs_ - half, yc_, y_north_, z0, z1, {});
+      addWall(false, xs_ + half, yc_, y_north_, z0, z1, {});
+      if (y_back_ < y_north_ - 1e-6) addWall(true, y_back_, xs_ - half, xs_ + half, z0, z1, {});
+    }
+
+    // Ceiling lamps along the corridor axis.
+    for (double x = 2.0; x < L_ - 1.0; x += 3.0) {
+      out_.mesh.addBox(Vector3d(x - 0.6, -0.15, ceiling - 0.06), Vector3d(x + 0.6, 0.15, ceiling),
+                       Surface::kClutter, 120.0f);
+    }
+  }
+
+  /// Free intervals along a corridor wall: not in doors, glass, the stairwell, the ends.
+  bool corridorSpotFree(bool north, double x0, double x1) const {
+    if (x0 < x_turn_west_ + 0.8 || x1 > x_turn_east_ - 0.8) return false;
+    for (const Room& r : north ? north_rooms_ : south_rooms_) {
+      if (x1 > r.door0 - 0.15 && x0 < r.door1 + 0.15) return false;
+      if (r.glass_front && x1 > r.x0 && x0 < r.x1) {
+        // Objects in front of glass are fine, but keep the view: allow only low ones (checked by caller).
+      }
+    }
+    if (north && hasStairs() && x1 > xs_ - b_.stairwell.width / 2 - 0.2 &&
+        x0 < xs_ + b_.stairwell.width / 2 + 0.2)
+      return false;
+    return true;
+  }
+
+  void addCorridorClutter(int k) {
+    const double zf = z_[k];
+    const double ceiling = z_[k + 1] - b_.slab_thickness;
+    const double face = yc_ - wt_ / 2;  // wall face distance from the axis
+    for (bool north : {false, true}) {
+      const double side = north ? 1.0 : -1.0;
+      std::vector<std::pair<double, double>> used;
+      auto overlaps = [&](double x0, double x1) {
+        for (const auto& u : used)
+          if (x1 > u.first - 0.1 && x0 < u.second + 0.1) return true;
+        return false;
+      };
+      // Pillars: structural, every pillar_spacing, protruding from the wall.
+      if (b_.pillar_spacing > 0.0) {
+        for (double x = b_.pillar_spacing; x < L_ - 1.0; x += b_.pillar_spacing) {
+          const double x0 = x - 0.2, x1 = x + 0.2;
+          if (!corridorSpotFree(north, x0, x1)) continue;
+          const double y_in = side * (face - 0.12), y_out = side * (face + wt_ / 2);
+          out_.mesh.addBox(Vector3d(x0, std::min(y_in, y_out), zf), Vector3d(x1, std::max(y_in, y_out), ceiling),
+                           Surface::kPillar);
+          used.push_back({x0, x1});
+        }
+      }
+      // Cabinets, bins and notice boards against the wall.
+      const int count = static_cast<int>(std::lround(b_.clutter_density * L_));
+      for (int i = 0, attempts = 0; i < count && attempts < 20 * count + 20; ++attempts) {
+        const double kind = rng_.uniform();
+        const double width = kind < 0.2 ? 0.35 : rng_.uniform(0.4, 1.3);
+        const double x0 = rng_.uniform(0.0, L_ - width), x1 = x0 + width;
+        if (!corridorSpotFree(north, x0, x1) || overlaps(x0, x1)) continue;
+        used.push_back({x0, x1});
+        ++i;
+        const float reflectivity = static_cast<float>(rng_.uniform(15.0, 110.0));
+        if (kind < 0.2) {  // round bin
+          const double r = 0.17;
+          const double y = side * (face - r - 0.02);
+          out_.mesh.addCylinder(Vector2d((x0 + x1) / 2, y), r, zf, zf + rng_.uniform(0.5, 0.8), 12,
+                                Surface::kClutter, reflectivity);
+        } else if (kind < 0.4) {  // notice board / fire hose cabinet on the wall
+          const double depth = rng_.uniform(0.03, 0.15);
+          const double bz0 = zf + rng_.uniform(0.8, 1.2), bz1 = bz0 + rng_.uniform(0.4, 0.9);
+          const double y_in = side * (face - depth), y_out = side * face;
+          out_.mesh.addBox(Vector3d(x0, std::min(y_in, y_out), bz0), Vector3d(x1, std::max(y_in, y_out), bz1),
+                           Surface::kClutter, reflectivity);
+        } else {  // cabinet / shelf
+          const double depth = rng_.uniform(0.2, 0.3);
+          const double height = rng_.uniform(0.5, 2.0);
+          const double y_in = side * (face - depth), y_out = side * face;
+          out_.mesh.addBox(Vector3d(x0, std::min(y_in, y_out), zf), Vector3d(x1, std::max(y_in, y_out), zf + height),
+                           Surface::kClutter, reflectivity);
+        }
+      }
+    }
+  }
+
+  void addRoomFurniture(int k) {
+    const double zf = z_[k];
+    for (bool north : {false, true}) {
+      const double side = north ? 1.0 : -1.0;
+      const double y_near = yc_ + wt_ / 2, y_far = (north ? y_north_ : -y_south_) - wt_ / 2;
+      for (const Room& r : north ? north_rooms_ : south_rooms_) {
+        const double rx0 = r.x0 + wt_ / 2, rx1 = r.x1 - wt_ / 2;
+        // Desk against the outer wall.
+        const double dw = std::min(rng_.uniform(1.2, 1.8), rx1 - rx0 - 0.4);
+        const double dx = rng_.uniform(rx0 + 0.1, rx1 - dw - 0.1);
+        box2(side, dx, dx + dw, y_far - 0.75, y_far, zf, zf + 0.75, rng_.uniform(20.0, 90.0));
+        // Tall cabinet against a partition, away from the door.
+        const bool left = rng_.uniform() < 0.5;
+        const double cx0 = left ? rx0 : rx1 - 0.5;
+        const double cy = rng_.uniform(y_near + 1.3, std::max(y_near + 1.35, y_far - 1.8));
+        box2(side, cx0, cx0 + 0.5, cy, cy + rng_.uniform(0.8, 1.6), zf, zf + rng_.uniform(1.6, 2.1),
+             rng_.uniform(20.0, 90.0));
+        // A chair-sized box and a round bin.
+        const double chx = rng_.uniform(rx0 + 0.8, std::max(rx0 + 0.85, rx1 - 0.8));
+        box2(side, chx - 0.25, chx + 0.25, y_far - 1.4, y_far - 0.9, zf, zf + 0.9, rng_.uniform(20.0, 60.0));
+        const double bx = rng_.uniform(rx0 + 0.4, std::max(rx0 + 0.45, rx1 - 0.4));
+        out_.mesh.addCylinder(Vector2d(bx, side * (y_near + 0.45)), 0.16, zf, zf + 0.55, 12,
+                              Surface::kClutter, static_cast<float>(rng_.uniform(20.0, 90.0)));
+      }
+    }
+  }
+
+  /// Box in room coordinates: y measured from the corridor axis on `side`.
+  void box2(double side, double x0, double x1, double y0, double y1, double z0, double z1,
+            double reflectivity) {
+    const double ya = side * y0, yb = side * y1;
+    out_.mesh.addBox(Vector3d(x0, std::min(ya, yb), z0), Vector3d(x1, std::max(ya, yb), z1),
+                     Surface::kClutter, static_cast<float>(reflectivity));
+  }
+
+  void addStairs(int k) {
+    const StairStorey& st = stairs_[k];
+    const double zf = z_[k], tread = b_.stairwell.tread, half = b_.stairwell.width / 2;
+    const double ex0 = xs_ + kPartitionThickness / 2, ex1 = xs_ + half - wt_ / 2;  // east flight
+    const double wx0 = xs_ - half + wt_ / 2, wx1 = xs_ - kPartitionThickness / 2;  // west flight
+    const double landing_back = y_back_ - wt_ / 2;
+    const double r = st.riser;
+    // Flight 1: east half, up towards +y.
+    for (int i = 1; i < st.risers_first; ++i) {
+      const double top = zf + i * r;
+      out_.mesh.addBox(Vector3d(ex0, y_flights_ + (i - 1) * tread, top - r - kStepUnderside),
+                       Vector3d(ex1, y_flights_ + i * tread, top), Surface::kStairs);
+    }
+    const double zl = zf + st.landing_z;
+    out_.mesh.addBox(Vector3d(ex0, y_flights_ + st.run_first, zl - kLandingThickness),
+                     Vector3d(ex1, landing_back, zl), Surface::kStairs);
+    out_.mesh.addBox(Vector3d(wx0, y_flights_ + st.run_second, zl - kLandingThickness),
+                     Vector3d(wx1, landing_back, zl), Surface::kStairs);
+    // Partition between the landing and the flights' shared wall line (the gap).
+    out_.mesh.addBox(Vector3d(wx1, y_flights_ + std::min(st.run_first, st.run_second), zl - kLandingThickness),
+                     Vector3d(ex0, landing_back, zl), Surface::kStairs);
+    // Flight 2: west half, up towards -y, from the half landing to the next floor.
+    const int second = st.risers - st.risers_first;
+    for (int j = 1; j < second; ++j) {
+      const double top = zl + j * r;
+      out_.mesh.addBox(Vector3d(wx0, y_flights_ + st.run_second - j * tread, top - r - kStepUnderside),
+                       Vector3d(wx1, y_flights_ + st.run_second - (j - 1) * tread, top), Surface::kStairs);
+    }
+    // Wall between the flights, through the whole storey.
+    out_.mesh.addBox(Vector3d(xs_ - kPartitionThickness / 2, y_flights_, zf),
+                     Vector3d(xs_ + kPartitionThickness / 2, y_flights_ + std::min(st.run_first, st.run_second), z_[k + 1]),
+                     Surface::kWall);
+  }
+
+  // ---- route ----------------------------------------------------------------
+
+  void addRoute() {
+    const RobotSpec& robot = spec_.robot;
+    const double lane = robot.lane_offset;
+    const double walk = robot.walk_speed, climb = robot.stair_speed;
+    auto at = [&](double x, double y, double z, double speed) {
+      out_.route.push_back({Vector3d(x, y, z), speed});
+    };
+    auto floorZ = [&](int k) { return z_[k] + robot.body_height; };
+    const int top = storeyCount() - 1;
+    const double y_turn = yc_ + b_.stairwell.floor_landing_depth / 2;  // U-turns on floor landings
+
+    at(x_start_, lane, floorZ(0), walk);
+    if (!hasStairs()) {
+      at(x_turn_east_, lane, floorZ(0), walk);
+      at(x_turn_east_, -lane, floorZ(0), walk);
+      at(x_turn_west_, -lane, floorZ(0), walk);
+      at(x_turn_west_, lane, floorZ(0), walk);
+      at(x_start_, lane, floorZ(0), walk);
+      return;
+    }
+    // Ground floor: east along the north lane (and the east wing), then up.
+    double lane_to_stairs = lane;
+    if (b_.wings == 2) {
+      at(x_turn_east_, lane, floorZ(0), walk);
+      at(x_turn_east_, -lane, floorZ(0), walk);
+      lane_to_stairs = -lane;
+    }
+    for (int k = 0; k < top; ++k) {
+      const StairStorey& st = stairs_[k];
+      const double zf = floorZ(k), zl = zf + st.landing_z, zn = floorZ(k + 1);
+      const double y_landing = (y_flights_ + st.run_first + y_back_ - wt_ / 2) / 2;
+      at(x_east_lane_, lane_to_stairs, zf, walk);
+      at(x_east_lane_, y_flights_, zf, climb);
+      at(x_east_lane_, y_flights_ + st.run_first, zl, walk);
+      at(x_east_lane_, y_landing, zl, walk);
+      at(x_west_lane_, y_landing, zl, walk);
+      at(x_west_lane_, y_flights_ + st.run_second, zl, climb);
+      at(x_west_lane_, y_flights_, zn, walk);
+      // Storey k+1: out to the south lane, west wing, back east.
+      at(x_west_lane_, -lane, zn, walk);
+      at(x_turn_west_, -lane, zn, walk);
+      at(x_turn_west_, lane, zn, walk);
+      lane_to_stairs = lane;
+      if (b_.wings == 2) {
+        at(x_turn_east_, lane, zn, walk);
+        at(x_turn_east_, -lane, zn, walk);
+        lane_to_stairs = -lane;
+      }
+    }
+    // Down from the top storey, flight by flight, U-turning on each floor landing.
+    double y_entry = lane_to_stairs;
+    for (int k = top - 1; k >= 0; --k) {
+      const StairStorey& st = stairs_[k];
+      const double zf = floorZ(k), zl = zf + st.landing_z, zn = floorZ(k + 1);
+      const double y_landing = (y_flights_ + st.run_first + y_back_ - wt_ / 2) / 2;
+      at(x_west_lane_, y_entry, zn, walk);
+      at(x_west_lane_, y_flights_, zn, climb);
+      at(x_west_lane_, y_flights_ + st.run_second, zl, walk);
+      at(x_west_lane_, y_landing, zl, walk);
+      at(x_east_lane_, y_landing, zl, walk);
+      at(x_east_lane_, y_flights_ + st.run_first, zl, climb);
+      at(x_east_lane_, y_flights_, zf, walk);
+      if (k > 0) {
+        at(x_east_lane_, y_turn, zf, walk);
+        y_entry = y_turn;
+      }
+    }
+    // Ground floor: to the south lane, round the west end, back to the start.
+    at(x_east_lane_, -lane, floorZ(0), walk);
+    at(x_turn_west_, -lane, floorZ(0), walk);
+    at(x_turn_west_, lane, floorZ(0), walk);
+    at(x_start_, lane, floorZ(0), walk);
+  }
+
+  const BuildingSpec& spec_;
+  const BuildingLayoutSpec& b_;
+  Random rng_;
+  Building out_;
+  std::vector<double> z_;  ///< floor top of storey k; z_[N] = roof top
+  std::vector<StairStorey> stairs_;
+  std::vector<Room> south_rooms_, north_rooms_;
+  double L_ = 0, yc_ = 0, wt_ = 0;
+  double xs_ = 0, y_flights_ = 0, y_back_ = 0, y_north_ = 0, y_south_ = 0;
+  double x_east_lane_ = 0, x_west_lane_ = 0, x_turn_west_ = 0, x_turn_east_ = 0, x_start_ = 0;
+};
+
+}  // namespace
+
+void Building::translate(const Eigen::Vector3d& offset) {
+  mesh.translate(offset);
+  for (StoreyTruth& s : storeys) {
+    s.floor_z += offset.z();
+    s.ceiling_z += offset.z();
+  }
+  for (RouteVertex& v : route) v.p += offset;
+}
+
+Building generateBuilding(const BuildingSpec& spec) { return Generator(spec).run(); }
+
+}  // namespace storey::sim

@@ -1,0 +1,54 @@
+#pragma once
+/// VLP-16 simulation: every laser firing is ray-cast from the sensor pose at
+/// its own firing time, so scans are motion-distorted like real ones.
+/// Firing sequence k fires at k * 55.296 us from the start of the simulation;
+/// a scan holds the firings of one revolution [n / rate, (n + 1) / rate) and
+/// its stamp is the time of its first firing (the driver's stamp with
+/// timestamp_first_packet), so per-point times are in [0, 1 / rate).
+/// Azimuth: pi (straight back) at t = 0, turning clockwise seen from above.
+#include <cstdint>
+#include <vector>
+
+#include "sim/building_spec.h"
+#include "sim/raycaster.h"
+#include "sim/trajectory.h"
+#include "types/scan.h"
+
+namespace storey::sim {
+
+struct LidarNoise {
+  double range_sigma = 0.0;      ///< [m]
+  double dropout = 0.0;          ///< probability [0, 1)
+  double intensity_sigma = 0.0;  ///< [sensor units]
+  bool quantize = false;         ///< report ranges in the sensor's 2 mm steps
+};
+
+class LidarSimulator {
+ public:
+  LidarSimulator(const TriangleMesh& mesh, const Trajectory& trajectory, const SensorsSpec& sensors,
+                 const LidarNoise& noise, std::uint64_t seed);
+
+  /// Number of complete revolutions within [0, duration].
+  int scanCount(double duration) const;
+  /// Stamp of scan n relative to the start of the simulation [ns].
+  std::int64_t scanStampNs(int n) const;
+  /// Time the driver would publish scan n (its last firing) [ns].
+  std::int64_t scanEndNs(int n) const;
+  /// Simulates scan n; Scan::stamp_ns is relative to the start of the
+  /// simulation (add the start time). Thread-safe; deterministic per (seed, n).
+  Scan simulateScan(int n) const;
+
+ private:
+  std::int64_t firstSequence(int n) const;
+  const Trajectory& trajectory_;
+  Pose T_body_lidar_;
+  LidarSpec spec_;
+  LidarNoise noise_;
+  std::uint64_t seed_;
+  std::int64_t revolution_ns_;
+  std::string frame_id_;
+  std::vector<float> reflectivity_;  ///< per mesh triangle
+  RayCaster caster_;
+};
+
+}  // namespace storey::sim

@@ -1,0 +1,234 @@
+#include "sim/simulator.h"
+
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cinttypes>
+#include <cstdio>
+#include <filesystem>
+#include <future>
+#include <ostream>
+#include <sstream>
+
+#include "common/atomic_file.h"
+#include "common/error.h"
+#include "common/log.h"
+#include "config/calibration.h"
+#include "sim/bag_writer.h"
+#include "sim/imu_simulator.h"
+#include "sim/lidar_simulator.h"
+#include "sim/world.h"
+
+namespace storey::sim {
+namespace {
+
+namespace fs = std::filesystem;
+
+/// "sec.nanosec" of an absolute stamp, exact.
+std::string stampText(std::int64_t ns) {
+  char buffer[48];
+  std::snprintf(buffer, sizeof(buffer), "%" PRId64 ".%09" PRId64, ns / 1000000000, ns % 1000000000);
+  return buffer;
+}
+
+void writeTumLine(std::ostream& out, std::int64_t stamp_ns, const Pose& pose) {
+  const Eigen::Vector3d& t = pose.translation();
+  const Eigen::Quaterniond& q = pose.rotation();
+  char buffer[256];
+  std::snprintf(buffer, sizeof(buffer), " %.9f %.9f %.9f %.12f %.12f %.12f %.12f\n", t.x(), t.y(),
+                t.z(), q.x(), q.y(), q.z(), q.w());
+  out << stampText(stamp_ns) << buffer;
+}
+
+std::string numberText(double value) {
+  char buffer[64];
+  std::snprintf(buffer, sizeof(buffer), "%.6f", value);
+  return buffer;
+}
+
+void writeStoreys(const std::string& path, const BuildingSpec& spec, const Building& building) {
+  writeFileAtomically(path, [&](std::ostream& out) {
+    out << "# Storey simulator ground truth: the storeys of the building.\n"
+        << "# World frame: z up, origin at the LiDAR's start position. Metres.\n"
+        << "# floor_z: top of the floor slab; ceiling_z: underside of the slab above.\n"
+        << "building: " << spec.name << "\n"
+        << "seed: " << spec.seed << "\n"
+        << "storeys:\n";
+    for (const StoreyTruth& s : building.storeys) {
+      out << "  - index: " << s.index << "\n"
+          << "    floor_z: " << numberText(s.floor_z) << "\n"
+          << "    ceiling_z: " << numberText(s.ceiling_z) << "\n";
+    }
+  });
+}
+
+/// The true sensor set-up. With perfect sensors the spec's noise is still
+/// reported: a pipeline needs non-zero weights.
+void writeCalibration(const std::string& path, const BuildingSpec& spec) {
+  Config config;
+  const SensorsSpec& s = spec.sensors;
+  config.sensor.T_imu_lidar = s.T_body_imu.inverse() * s.T_body_lidar;
+  config.sensor.time_offset_lidar_to_imu = 0.0;
+  config.sensor.lidar_model = LidarModel::kVlp16;
+  config.sensor.imu.rate_hz = s.imu.rate;
+  config.sensor.imu.gravity = s.imu.gravity;
+  config.sensor.imu.gyro_noise_density = s.imu.gyro_noise_density;
+  config.sensor.imu.accel_noise_density = s.imu.accel_noise_density;
+  config.sensor.imu.gyro_random_walk = s.imu.gyro_random_walk;
+  config.sensor.imu.accel_random_walk = s.imu.accel_random_walk;
+  config.input.points_topic = s.points_topic;
+  config.input.imu_topic = s.imu_topic;
+  writeCalibrationFile(config, path);
+}
+
+/// A temporary sibling folder that is removed unless committed.
+class StagingDir {
+ public:
+  explicit StagingDir(const fs::path& target) : target_(target) {
+    const fs::path parent = target.has_parent_path() ? target.parent_path() : fs::path(".");
+    std::error_code ec;
+    fs::create_directories(parent, ec);
+    if (ec) throw Error(target.string() + ": cannot create the parent folder: " + ec.message());
+    path_ = parent / ("." + target.filename().string() + ".tmp-" + std::to_string(::getpid()));
+    fs::remove_all(path_, ec);
+    if (!fs::create_directory(path_, ec) || ec)
+      throw Error(path_.string() + ": cannot create the temporary output folder: " + ec.message());
+  }
+  ~StagingDir() {
+    std::error_code ec;
+    if (!committed_) fs::remove_all(path_, ec);
+  }
+  std::string file(const char* name) const { return (path_ / name).string(); }
+
+  /// Moves the files into the target folder (created when missing).
+  void commit() {
+    std::error_code ec;
+    if (!fs::exists(target_, ec)) {
+      fs::rename(path_, target_, ec);
+      if (ec) throw Error(target_.string() + ": cannot move the finished output into place: " + ec.message());
+      committed_ = true;
+      return;
+    }
+    if (!fs::is_directory(target_, ec)) throw Error(target_.string() + ": exists and is not a folder");
+    for (const auto& entry : fs::directory_iterator(path_)) {
+      fs::rename(entry.path(), target_ / entry.path().filename(), ec);
+      if (ec) throw Error((target_ / entry.path().filename()).string() + ": cannot move into place: " + ec.message());
+    }
+    fs::remove_all(path_, ec);
+    committed_ = true;
+  }
+
+ private:
+  fs::path target_, path_;
+  bool committed_ = false;
+};
+
+void report(const ProgressFn& progress, double fraction, const std::string& stage) {
+  if (progress && !progress(std::clamp(fraction, 0.0, 1.0), stage)) throw Cancelled();
+}
+
+}  // namespace
+
+SimulationResult simulate(const BuildingSpec& spec, const SimulationOptions& options,
+                          const std::string& out_dir, const ProgressFn& progress) {
+  const auto wall_start = std::chrono::steady_clock::now();
+  spec.validate();
+  if (out_dir.empty()) throw Error("simulator: no output folder given");
+  report(progress, 0.0, "building");
+  const World world = makeWorld(spec);
+  const Trajectory& trajectory = world.trajectory;
+  const SensorsSpec& sensors = spec.sensors;
+
+  SimulationResult result;
+  result.out_dir = out_dir;
+  result.walk_duration = trajectory.duration();
+  result.duration = options.max_duration > 0.0 ? std::min(options.max_duration, trajectory.duration())
+                                                : trajectory.duration();
+  result.path_length = trajectory.pathLength();
+  result.triangles = world.building.mesh.triangles().size();
+  result.storeys = static_cast<int>(world.building.storeys.size());
+  const std::int64_t start_ns = static_cast<std::int64_t>(std::llround(sensors.start_time * 1e9));
+
+  StagingDir staging(out_dir);
+  world.building.mesh.writePly(staging.file(kMeshFile));
+  writeStoreys(staging.file(kStoreysFile), spec, world.building);
+  writeCalibration(staging.file(kCalibrationFile), spec);
+
+  report(progress, 0.0, "IMU");
+  const ImuSimulation imu =
+      simulateImu(trajectory, sensors, result.duration, options.perfect_sensors, spec.seed);
+  result.imu_samples = static_cast<std::int64_t>(imu.samples.size());
+  writeFileAtomically(staging.file(kImuTruthFile), [&](std::ostream& out) {
+    out << "# timestamp x y z qx qy qz qw (IMU frame in the world frame)\n";
+    for (std::size_t i = 0; i < imu.samples.size(); ++i)
+      writeTumLine(out, start_ns + imu.samples[i].stamp_ns, imu.T_world_imu[i]);
+  });
+
+  LidarNoise noise;
+  if (!options.perfect_sensors) {
+    noise.range_sigma = sensors.lidar.range_noise;
+    noise.dropout = sensors.lidar.dropout;
+    noise.intensity_sigma = sensors.lidar.intensity_noise;
+    noise.quantize = true;
+  }
+  const LidarSimulator lidar(world.building.mesh, trajectory, sensors, noise, spec.seed);
+  const int scan_count = lidar.scanCount(result.duration);
+  result.scans = scan_count;
+
+  const std::string bag_path = staging.file(kBagFile);
+  BagWriter bag(bag_path, options.compress ? BagCompression::kLz4 : BagCompression::kNone);
+  const double gyro_variance = std::pow(sensors.imu.gyro_noise_density, 2) * sensors.imu.rate;
+  const double accel_variance = std::pow(sensors.imu.accel_noise_density, 2) * sensors.imu.rate;
+  std::size_t next_imu = 0;
+  auto writeImuUntil = [&](std::int64_t t_ns) {
+    while (next_imu < imu.samples.size() && imu.samples[next_imu].stamp_ns <= t_ns) {
+      ImuSample sample = imu.samples[next_imu++];
+      sample.stamp_ns += start_ns;
+      bag.writeImu(sensors.imu_topic, sensors.imu_frame_id, sample, gyro_variance, accel_variance);
+    }
+  };
+
+  std::ostringstream lidar_truth;
+  lidar_truth << "# timestamp x y z qx qy qz qw (LiDAR frame in the world frame, at each scan's stamp)\n";
+  const int threads = options.threads > 0 ? options.threads : tbb::this_task_arena::max_concurrency();
+  tbb::task_arena arena(threads);
+  const int chunk = std::max(8, 4 * threads);
+  // Ray-cast the next chunk of scans while this thread writes the previous one.
+  auto castChunk = [&](int first) {
+    std::vector<Scan> out(static_cast<std::size_t>(std::max(0, std::min(chunk, scan_count - first))));
+    arena.execute([&] {
+      tbb::parallel_for(0, static_cast<int>(out.size()), [&](int i) { out[i] = lidar.simulateScan(first + i); });
+    });
+    return out;
+  };
+  std::future<std::vector<Scan>> pending = std::async(std::launch::async, castChunk, 0);
+  for (int first = 0; first < scan_count; first += chunk) {
+    report(progress, static_cast<double>(first) / std::max(1, scan_count), "ray-casting scans");
+    std::vector<Scan> scans = pending.get();
+    if (first + chunk < scan_count) pending = std::async(std::launch::async, castChunk, first + chunk);
+    for (std::size_t i = 0; i < scans.size(); ++i) {
+      Scan& scan = scans[i];
+      const int n = first + static_cast<int>(i);
+      const std::int64_t receipt_ns = lidar.scanEndNs(n);
+      writeImuUntil(receipt_ns);
+      writeTumLine(lidar_truth, start_ns + scan.stamp_ns,
+                   trajectory.frame(scan.stamp_ns * 1e-9, sensors.T_body_lidar).T_world_frame);
+      result.points += static_cast<std::int64_t>(scan.points.size());
+      scan.stamp_ns += start_ns;
+      bag.writeScan(sensors.points_topic, scan, start_ns + receipt_ns);
+    }
+  }
+  writeImuUntil(INT64_MAX / 2);
+  report(progress, 1.0, "writing the bag");
+  bag.close();
+  writeFileAtomically(staging.file(kLidarTruthFile), lidar_truth.str());
+  staging.commit();
+  result.wall_time =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+  return result;
+}
+
+}  // namespace storey::sim

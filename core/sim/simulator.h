@@ -1,0 +1,51 @@
+#pragma once
+/// `storey simulate`: building spec -> building mesh, legged-robot walk,
+/// VLP-16 and IMU logs in a ROS1 bag, ground truth. See docs/simulator.md.
+///
+/// World frame of every output: z up (gravity (0, 0, -g)), x = the robot's
+/// initial heading, origin at the LiDAR's start position.
+#include <cstdint>
+#include <string>
+
+#include "common/progress.h"
+#include "sim/building_spec.h"
+
+namespace storey::sim {
+
+/// File names inside the output folder.
+inline constexpr const char* kBagFile = "simulation.bag";
+inline constexpr const char* kLidarTruthFile = "groundtruth_lidar.tum";
+inline constexpr const char* kImuTruthFile = "groundtruth_imu.tum";
+inline constexpr const char* kMeshFile = "building.ply";
+inline constexpr const char* kStoreysFile = "storeys.yaml";
+inline constexpr const char* kCalibrationFile = "calibration.yaml";
+
+struct SimulationOptions {
+  bool perfect_sensors = false;  ///< no noise, dropouts or biases (tests)
+  double max_duration = 0.0;     ///< stop the sensors after this time; 0 = the whole walk [s]
+  bool compress = true;          ///< LZ4 chunks in the bag
+  int threads = 0;               ///< ray-casting threads; 0 = all cores
+};
+
+struct SimulationResult {
+  std::string out_dir;
+  double duration = 0.0;        ///< simulated time [s]
+  double walk_duration = 0.0;   ///< the whole planned walk [s]
+  double path_length = 0.0;     ///< planned walking distance [m]
+  std::int64_t scans = 0;
+  std::int64_t points = 0;
+  std::int64_t imu_samples = 0;
+  std::size_t triangles = 0;
+  int storeys = 0;
+  double wall_time = 0.0;       ///< [s]
+};
+
+/// Runs the simulation and writes the output folder (created if missing; its
+/// files are replaced). Everything is written in a temporary folder next to
+/// `out_dir` and moved in at the end, so a failure or a cancel (ProgressFn
+/// returning false -> storey::Cancelled) leaves no partial output. Same spec
+/// and options -> byte-identical files.
+SimulationResult simulate(const BuildingSpec& spec, const SimulationOptions& options,
+                          const std::string& out_dir, const ProgressFn& progress = {});
+
+}  // namespace storey::sim

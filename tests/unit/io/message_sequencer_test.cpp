@@ -1,0 +1,194 @@
+// Time ordering of scans and IMU samples read in record order.
+#include "io/message_sequencer.h"
+
+#include <gtest/gtest.h>
+
+#include <limits>
+
+namespace storey {
+namespace {
+
+constexpr std::int64_t kMs = 1'000'000;
+
+ImuSample imu(std::int64_t stamp_ns) {
+  ImuSample s;
+  s.stamp_ns = stamp_ns;
+  s.accel = Eigen::Vector3d(0, 0, 9.81);
+  return s;
+}
+
+Scan scan(std::int64_t stamp_ns, int points = 3) {
+  Scan s;
+  s.stamp_ns = stamp_ns;
+  s.points.resize(points);
+  return s;
+}
+
+/// Stamp of each message and 's' or 'i', in delivery order.
+std::vector<std::pair<char, std::int64_t>> drain(MessageSequencer& sequencer) {
+  std::vector<std::pair<char, std::int64_t>> out;
+  LogMessage m;
+  sequencer.finish();
+  while (sequencer.pop(m)) {
+    if (const auto* s = std::get_if<Scan>(&m)) {
+      out.emplace_back('s', s->stamp_ns);
+    } else {
+      out.emplace_back('i', std::get<ImuSample>(m).stamp_ns);
+    }
+  }
+  return out;
+}
+
+TEST(IoMessageSequencer, ScansRecordedLateAreMovedBeforeLaterImu) {
+  LogReadStats stats;
+  MessageSequencer sequencer({}, stats);
+  // Record order: IMU 0..40 ms, then the scan stamped 10 ms (recorded at the end of its sweep).
+  for (int t = 0; t <= 40; t += 10) sequencer.push(imu(t * kMs));
+  sequencer.push(scan(10 * kMs));
+  sequencer.push(imu(50 * kMs));
+  const auto out = drain(sequencer);
+  const std::vector<std::pair<char, std::int64_t>> expected = {
+      {'i', 0},        {'i', 10 * kMs}, {'s', 10 * kMs}, {'i', 20 * kMs},
+      {'i', 30 * kMs}, {'i', 40 * kMs}, {'i', 50 * kMs}};
+  EXPECT_EQ(out, expected);
+  EXPECT_EQ(stats.scans, 1);
+  EXPECT_EQ(stats.imu_samples, 6);
+  EXPECT_EQ(stats.points, 3);
+  EXPECT_TRUE(stats.dropped.empty());
+}
+
+TEST(IoMessageSequencer, LidarToImuOffsetOrdersButKeepsStamp) {
+  LogReadStats stats;
+  MessageSequencer::Options options;
+  options.lidar_to_imu_offset_ns = 25 * kMs;  // t_imu = t_lidar + 25 ms
+  MessageSequencer sequencer(options, stats);
+  sequencer.push(imu(0));
+  sequencer.push(imu(20 * kMs));
+  sequencer.push(imu(30 * kMs));
+  sequencer.push(scan(0));  // at 25 ms in the IMU clock
+  const auto out = drain(sequencer);
+  const std::vector<std::pair<char, std::int64_t>> expected = {
+      {'i', 0}, {'i', 20 * kMs}, {'s', 0}, {'i', 30 * kMs}};
+  EXPECT_EQ(out, expected);
+}
+
+TEST(IoMessageSequencer, BackwardDuplicateAndNonFiniteImuDropped) {
+  LogReadStats stats;
+  MessageSequencer sequencer({}, stats);
+  sequencer.push(imu(10 * kMs));
+  sequencer.push(imu(20 * kMs));
+  sequencer.push(imu(15 * kMs));  // backwards
+  sequencer.push(imu(20 * kMs));  // duplicate
+  ImuSample bad = imu(25 * kMs);
+  bad.gyro.x() = std::numeric_limits<double>::quiet_NaN();
+  sequencer.push(bad);
+  ImuSample inf = imu(26 * kMs);
+  inf.accel.z() = std::numeric_limits<double>::infinity();
+  sequencer.push(inf);
+  sequencer.push(imu(30 * kMs));
+  const auto out = drain(sequencer);
+  const std::vector<std::pair<char, std::int64_t>> expected = {
+      {'i', 10 * kMs}, {'i', 20 * kMs}, {'i', 30 * kMs}};
+  EXPECT_EQ(out, expected);
+  EXPECT_EQ(stats.dropped[kDropImuBackwards], 1);
+  EXPECT_EQ(stats.dropped[kDropImuDuplicate], 1);
+  EXPECT_EQ(stats.dropped[kDropImuNotFinite], 2);
+  EXPECT_EQ(stats.imu_samples, 3);
+}
+
+TEST(IoMessageSequencer, BackwardAndDuplicateScansDropped) {
+  LogReadStats stats;
+  MessageSequencer sequencer({}, stats);
+  sequencer.push(scan(100 * kMs));
+  sequencer.push(scan(100 * kMs));
+  sequencer.push(scan(50 * kMs));
+  sequencer.push(scan(200 * kMs));
+  const auto out = drain(sequencer);
+  ASSERT_EQ(out.size(), 2u);
+  EXPECT_EQ(stats.dropped[kDropScanDuplicate], 1);
+  EXPECT_EQ(stats.dropped[kDropScanBackwards], 1);
+}
+
+TEST(IoMessageSequencer, BufferIsBoundedByWindowAndCount) {
+  LogReadStats stats;
+  MessageSequencer::Options options;
+  options.window_ns = 100 * kMs;
+  options.max_buffered = 50;
+  MessageSequencer sequencer(options, stats);
+  LogMessage m;
+  std::size_t most = 0;
+  for (int k = 0; k < 1000; ++k) {
+    sequencer.push(imu(k * 2 * kMs));  // 500 Hz
+    while (sequencer.pop(m)) {
+    }
+    most = std::max(most, sequencer.buffered());
+  }
+  EXPECT_LE(most, 51u);  // 100 ms of 500 Hz
+  EXPECT_GT(stats.imu_samples, 900);
+
+  // Count bound: every message at the same key, nothing ever leaves by the window.
+  LogReadStats stats2;
+  options.window_ns = std::numeric_limits<std::int64_t>::max();
+  MessageSequencer by_count(options, stats2);
+  for (int k = 0; k < 200; ++k) {
+    by_count.push(scan(k + 1));
+    while (by_count.pop(m)) {
+    }
+    ASSERT_LE(by_count.buffered(), 50u);
+  }
+}
+
+TEST(IoMessageSequencer, MessagesLaterThanTheWindowAreDropped) {
+  LogReadStats stats;
+  MessageSequencer::Options options;
+  options.window_ns = 100 * kMs;
+  MessageSequencer sequencer(options, stats);
+  LogMessage m;
+  for (int t = 0; t <= 500; t += 10) {
+    sequencer.push(imu(t * kMs));
+    while (sequencer.pop(m)) {
+    }
+  }
+  sequencer.push(scan(100 * kMs));  // 400 ms late: older than what was already delivered
+  const auto out = drain(sequencer);
+  for (const auto& [kind, stamp] : out) EXPECT_EQ(kind, 'i');
+  EXPECT_EQ(stats.dropped[kDropScanLate], 1);
+  EXPECT_EQ(stats.scans, 0);
+}
+
+TEST(IoMessageSequencer, DeliveryIsMonotonic) {
+  LogReadStats stats;
+  MessageSequencer sequencer({}, stats);
+  // Scans recorded 80 ms after their stamp, IMU 2 ms after: 5 s of 400 Hz + 10 Hz.
+  std::vector<std::pair<std::int64_t, LogMessage>> by_record;
+  for (std::int64_t k = 0; k < 2000; ++k) {
+    by_record.emplace_back(k * 2'500'000 + 2 * kMs, imu(k * 2'500'000));
+  }
+  for (std::int64_t k = 0; k < 50; ++k) {
+    by_record.emplace_back(k * 100 * kMs + 80 * kMs, scan(k * 100 * kMs));
+  }
+  std::stable_sort(by_record.begin(), by_record.end(),
+                   [](const auto& a, const auto& b) { return a.first < b.first; });
+  LogMessage m;
+  std::int64_t last = std::numeric_limits<std::int64_t>::min();
+  int delivered = 0;
+  for (auto& [record, message] : by_record) {
+    if (auto* s = std::get_if<Scan>(&message)) {
+      sequencer.push(std::move(*s));
+    } else {
+      sequencer.push(std::get<ImuSample>(message));
+    }
+    while (sequencer.pop(m)) {
+      const std::int64_t stamp = std::visit([](const auto& x) { return x.stamp_ns; }, m);
+      ASSERT_GE(stamp, last);
+      last = stamp;
+      ++delivered;
+    }
+  }
+  delivered += static_cast<int>(drain(sequencer).size());
+  EXPECT_EQ(delivered, 2050);
+  EXPECT_TRUE(stats.dropped.empty());
+}
+
+}  // namespace
+}  // namespace storey
