@@ -39,6 +39,10 @@ int main(int argc, char** argv) {
   run_cmd->add_option("LOG", run.log_path, "input log (ROS1 bag)");
   run_cmd->add_option("-o,--out", run.out_dir, "output folder")->capture_default_str();
   run_cmd->add_flag("--no-srp", run.no_srp, "switch the SRP back end off (odometry only)");
+  run_cmd->add_option("--preset", run.preset,
+                      "without LOG: the simulated building to map (tiny, default, building-a, "
+                      "building-b)")
+      ->capture_default_str();
   addCommonOptions(*run_cmd, run.common);
 
   InfoOptions info;
@@ -59,6 +63,13 @@ int main(int argc, char** argv) {
   sim_cmd->add_option("--imu-rate", simulate.imu_rate_hz, "IMU rate [Hz]");
   bool no_progress = false;
   sim_cmd->add_flag("--no-progress", no_progress, "no progress bar");
+  sim_cmd->add_flag("--perfect-sensors", simulate.perfect_sensors,
+                    "no noise, dropouts or biases (for tests)");
+  bool no_compress = false;
+  sim_cmd->add_flag("--no-compress", no_compress, "plain bag chunks instead of LZ4");
+  sim_cmd->add_option("--duration", simulate.max_duration, "stop the sensors after this time [s]");
+  sim_cmd->add_option("--threads", simulate.threads, "ray-casting threads (0: all cores)")
+      ->capture_default_str();
 
   EvalOptions eval;
   auto* eval_cmd = app.add_subcommand(
@@ -68,6 +79,17 @@ int main(int argc, char** argv) {
   eval_cmd->add_option("--mesh", eval.mesh_path, "true building mesh (PLY)");
   eval_cmd->add_option("--map", eval.map_path, "registered map (PLY)");
   eval_cmd->add_option("--storeys", eval.storeys_path, "true storey elevations (YAML)");
+  eval_cmd->add_option("--est-storeys", eval.est_storeys_path,
+                       "estimated storeys.json (default: storeys.json next to --est)");
+  eval_cmd->add_option("--json", eval.json_path,
+                       "JSON result file (default: <est>.eval.json; 'none': no file; '-': stdout)");
+  eval_cmd->add_option("--rpe-length", eval.rpe_lengths, "RPE segment length [m], repeatable")
+      ->capture_default_str();
+  eval_cmd->add_option("--max-dt", eval.max_time_difference,
+                       "timestamp tolerance of the association [s]")
+      ->capture_default_str();
+  eval_cmd->add_option("--threads", eval.threads, "map distance threads (0: all cores)")
+      ->capture_default_str();
 
   RenderOptions render;
   auto* render_cmd =
@@ -86,6 +108,7 @@ int main(int argc, char** argv) {
     if (*info_cmd) return runInfo(info);
     if (*sim_cmd) {
       simulate.progress = !no_progress;
+      simulate.compress = !no_compress;
       return runSimulate(simulate);
     }
     if (*eval_cmd) return runEval(eval);

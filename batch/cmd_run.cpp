@@ -1,13 +1,16 @@
-// `storey run`: the pipeline on a log (or on the built-in simulated building).
+// `storey run`: the pipeline on a log, or on the built-in simulated building
+// (simulated into OUT/simulation/ first, with its calibration and ground truth).
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
 
 #include "commands.h"
 #include "common/error.h"
+#include "config/calibration.h"
 #include "options_config.h"
 #include "pipeline/pipeline.h"
 #include "progress_bar.h"
+#include "sim/simulator.h"
 #include "trajectory/drift.h"
 
 namespace storey::cli {
@@ -15,13 +18,24 @@ namespace storey::cli {
 int runRun(const RunOptions& options) {
   Config config = configFromOptions(options.common);
   if (options.no_srp) config.backend.srp = false;
-  if (options.log_path.empty()) {
-    throw Error(
-        "no LOG given and the built-in simulated building is not wired in yet; give a ROS1 bag: "
-        "storey run LOG");
+  std::string log_path = options.log_path;
+  if (log_path.empty()) {
+    const std::string sim_dir = (std::filesystem::path(options.out_dir) / "simulation").string();
+    std::cerr << "storey run: no LOG given: simulating the built-in building '" << options.preset
+              << "' into " << sim_dir << '\n';
+    ProgressBar sim_bar("run");
+    const sim::SimulationResult sim =
+        sim::simulate(sim::loadBuildingSpec(options.preset), {}, sim_dir, sim_bar.callback());
+    sim_bar.done();
+    std::cerr << "storey run: simulated " << sim.path_length << " m in " << sim.duration
+              << " s, " << sim.scans << " scans\n";
+    log_path = (std::filesystem::path(sim_dir) / sim::kBagFile).string();
+    // The simulated sensors' calibration, unless the user gave one.
+    if (options.common.calibration_path.empty())
+      applyCalibrationFile(config, (std::filesystem::path(sim_dir) / sim::kCalibrationFile).string());
   }
-  ProgressBar bar("mapping");
-  const PipelineResult result = runPipeline(options.log_path, config, options.out_dir, bar.callback());
+  ProgressBar bar("run");
+  const PipelineResult result = runPipeline(log_path, config, options.out_dir, bar.callback());
   bar.done();
   const EndPointDrift drift = endPointDrift(result.trajectory);
   std::cout << std::fixed << std::setprecision(3) << result.trajectory.size() << " scans, path "

@@ -20,6 +20,7 @@ struct RunOptions {
   CommonOptions common;
   std::string log_path;  ///< empty = simulate the built-in default building
   std::string out_dir = "storey_out";
+  std::string preset = "default";  ///< building simulated when no log is given
   bool no_srp = false;
 };
 
@@ -43,6 +44,11 @@ struct SimulateOptions {
 
 struct EvalOptions {
   std::string gt_path, est_path, mesh_path, map_path, storeys_path;
+  std::string est_storeys_path;  ///< --est-storeys: estimated storeys.json; empty = storeys.json next to --est
+  std::string json_path;         ///< --json: empty = <est stem>.eval.json next to --est; "none" = no file; "-" = JSON on stdout
+  std::vector<double> rpe_lengths{10.0};  ///< --rpe-length (repeatable): RPE segment lengths [m]
+  double max_time_difference = 0.01;      ///< --max-dt: timestamp tolerance of the association [s]
+  int threads = 0;                        ///< --threads: map distance threads, 0 = all cores
 };
 
 struct RenderOptions {

@@ -13,10 +13,6 @@ int notImplemented(const char* command, const char* what) {
 
 }  // namespace
 
-int runEval(const EvalOptions&) {
-  return notImplemented("eval", "trajectory and map evaluation arrive with the map/export stage");
-}
-
 int runRender(const RenderOptions&) {
   return notImplemented("render", "off-screen VTK renders arrive with the render stage");
 }

@@ -55,8 +55,8 @@ struct FeatureSet {
 /// ordered by their time along each ring.
 FeatureSet extractFeatures(const Scan& scan, const FeatureConfig& config);
 
-/// Centroid of the points in each occupied cube of side `voxel_size`
-/// (voxel_size <= 0 returns the input). Deterministic order.
+/// One point per occupied cube of side `voxel_size`: the point nearest to the
+/// cube's centroid (voxel_size <= 0 returns the input). Deterministic order.
 std::vector<Eigen::Vector3f> voxelDownsample(const std::vector<Eigen::Vector3f>& points,
                                              double voxel_size);
 

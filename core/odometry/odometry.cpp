@@ -32,7 +32,7 @@ struct LidarInertialOdometry::Frame {
   Scan deskewed;
   OdometryScanStats stats;
   bool in_map = false;  // features inserted into the local map
-  Eigen::Matrix<double, 9, 1> motion_prior = Eigen::Matrix<double, 9, 1>::Zero();
+  MotionPrior motion_prior;  // used while this frame is the window's oldest
 
   ImuState state() const { return blocks.toState(state_ns); }
 };
@@ -190,6 +190,9 @@ void LidarInertialOdometry::processScan(const Scan& scan) {
       origin_set_ = true;
     }
     frame->blocks = ImuStateBlocks::fromState(previous);
+    frame->motion_prior = diagonalMotionPrior(Eigen::Map<const Vector9d>(frame->blocks.motion),
+                                              cfg.prior_velocity_sigma, cfg.prior_gyro_bias_sigma,
+                                              cfg.prior_accel_bias_sigma);
   } else {
     const Frame& last = *window_.back();
     previous = last.state();
@@ -211,7 +214,7 @@ void LidarInertialOdometry::processScan(const Scan& scan) {
   // 2. Deskew with the IMU-propagated motion.
   t = Clock::now();
   const ImuPoseTable table = ImuPoseTable::fromSamples(previous, imu_, table_end_ns, gravity);
-  frame->deskewed = deskewScan(scan, table, config_.sensor);
+  frame->deskewed = getenv("NODESKEW") ? scan : deskewScan(scan, table, config_.sensor);
   frame->stats.ms_deskew = msSince(t);
 
   // 3. Features.
@@ -247,12 +250,7 @@ void LidarInertialOdometry::optimise(Frame& newest) {
     for (auto& frame : window_) addImuStateBlocks(problem, frame->blocks);
     Frame& oldest = *window_.front();
     problem.SetParameterBlockConstant(oldest.blocks.pose);
-    if (round == 0) std::copy(oldest.blocks.motion, oldest.blocks.motion + 9, oldest.motion_prior.data());
-    Eigen::Matrix<double, 9, 1> prior_sigma;
-    prior_sigma << Eigen::Vector3d::Constant(cfg.prior_velocity_sigma),
-        Eigen::Vector3d::Constant(cfg.prior_gyro_bias_sigma),
-        Eigen::Vector3d::Constant(cfg.prior_accel_bias_sigma);
-    problem.AddResidualBlock(new MotionPriorFactor(oldest.motion_prior, prior_sigma), nullptr,
+    problem.AddResidualBlock(new MotionPriorFactor(oldest.motion_prior), nullptr,
                              oldest.blocks.motion);
     for (std::size_t i = 1; i < window_.size(); ++i) {
       Frame& previous = *window_[i - 1];
@@ -267,11 +265,11 @@ void LidarInertialOdometry::optimise(Frame& newest) {
     for (std::size_t i = 1; i < window_.size(); ++i) {
       Frame& frame = *window_[i];
       for (const PlaneMatch& m : frame.matches.planes)
-        problem.AddResidualBlock(new PointToPlaneFactor(m.y_imu, m.n_world, m.d_world, weight), loss,
-                                 frame.blocks.pose);
+        problem.AddResidualBlock(new PointToPlaneFactor(m.y_imu, m.n_world, m.d_world, 1.0 / m.sigma),
+                                 loss, frame.blocks.pose);
       for (const LineMatch& m : frame.matches.lines)
-        problem.AddResidualBlock(new PointToLineFactor(m.y_imu, m.a_world, m.u_world, weight), loss,
-                                 frame.blocks.pose);
+        problem.AddResidualBlock(new PointToLineFactor(m.y_imu, m.a_world, m.u_world, 1.0 / m.sigma),
+                                 loss, frame.blocks.pose);
     }
     ceres::Solver::Options options;
     options.linear_solver_type = ceres::DENSE_NORMAL_CHOLESKY;
@@ -282,6 +280,13 @@ void LidarInertialOdometry::optimise(Frame& newest) {
     ceres::Solver::Summary summary;
     ceres::Solve(options, &problem, &summary);
     newest.stats.solver_iterations += static_cast<int>(summary.iterations.size());
+    if (getenv("ODODEBUG")) {
+      const auto st = newest.blocks.toState(newest.state_ns);
+      fprintf(stderr, "scan %.2f round %d planes %zu lines %zu cost %g -> %g iters %zu p %.4f %.4f %.4f v %.4f %.4f %.4f\n",
+              nsToSeconds(newest.state_ns) - 1.7e9, round, newest.matches.planes.size(), newest.matches.lines.size(),
+              summary.initial_cost, summary.final_cost, summary.iterations.size(), st.T_world_imu.translation().x(),
+              st.T_world_imu.translation().y(), st.T_world_imu.translation().z(), st.v_world_imu.x(), st.v_world_imu.y(), st.v_world_imu.z());
+    }
     newest.stats.ms_optimisation += msSince(t);
   }
   newest.stats.plane_matches = static_cast<std::int64_t>(newest.matches.planes.size());
@@ -295,13 +300,13 @@ void LidarInertialOdometry::optimise(Frame& newest) {
   for (const PlaneMatch& m : newest.matches.planes) {
     Eigen::Matrix<double, 1, 6> J;
     J << m.n_world.transpose(), (T_world_imu.rotation() * m.y_imu).cross(m.n_world).transpose();
-    H += weight * weight * J.transpose() * J;
+    H += J.transpose() * J / (m.sigma * m.sigma);
   }
   for (const LineMatch& m : newest.matches.lines) {
     Eigen::Matrix<double, 3, 6> J;
     const Eigen::Matrix3d U = -so3::skew(m.u_world);
     J << U, -U * so3::skew(T_world_imu.rotation() * m.y_imu);
-    H += weight * weight * J.transpose() * J;
+    H += J.transpose() * J / (m.sigma * m.sigma);
   }
   const Eigen::Vector3d translation_eigen = marginalEigenvalues(H, 0);
   const Eigen::Vector3d rotation_eigen = marginalEigenvalues(H, 3);
@@ -327,6 +332,12 @@ void LidarInertialOdometry::slide() {
     oldest.in_map = true;
   }
   if (window_.size() == 1) return;  // the first frame stays as the window's fixed anchor
+  Frame& next = *window_[1];
+  next.motion_prior = propagateMotionPrior(oldest.motion_prior, ImuFactor(*next.from_previous),
+                                           oldest.blocks.pose, oldest.blocks.motion,
+                                           next.blocks.pose, next.blocks.motion,
+                                           config_.odometry.pose_sigma_translation,
+                                           config_.odometry.pose_sigma_rotation);
   emit(oldest);
   window_.pop_front();
 }

@@ -27,9 +27,12 @@ struct OdometryConfig {
   double degenerate_translation_std = 0.02;  ///< LiDAR-only std above which a direction is
                                              ///< reported degenerate [m]
   double degenerate_rotation_std = 0.005;    ///< same for rotations [rad]
-  double prior_velocity_sigma = 0.05;     ///< prior on the oldest state's velocity [m/s]
-  double prior_gyro_bias_sigma = 1e-3;    ///< prior on its gyro bias [rad/s]
-  double prior_accel_bias_sigma = 1e-2;   ///< prior on its accel bias [m/s^2]
+  double prior_velocity_sigma = 0.01;     ///< initial velocity uncertainty (still start) [m/s]
+  double prior_gyro_bias_sigma = 1e-3;    ///< initial gyro bias uncertainty [rad/s]
+  double prior_accel_bias_sigma = 0.05;   ///< initial accel bias uncertainty [m/s^2]
+  double pose_sigma_translation = 0.02;   ///< accuracy of a registered pose, used when the
+                                          ///< oldest state leaves the window [m]
+  double pose_sigma_rotation = 0.005;     ///< same for its rotation [rad]
   double max_scan_gap = 0.5;       ///< a longer time between scans is an error [s]
 };
 

@@ -40,7 +40,7 @@ MatchResult matchFeatures(const std::vector<Eigen::Vector3d>& planes_imu,
       reject(MatchReject::kTooFar);
       continue;
     }
-    result.planes.push_back({y, fit.normal, fit.d});
+    result.planes.push_back({y, fit.normal, fit.d, std::hypot(config.point_sigma, fit.thickness)});
   }
   result.lines.reserve(edges_imu.size());
   for (const Eigen::Vector3d& y : edges_imu) {
@@ -60,7 +60,7 @@ MatchResult matchFeatures(const std::vector<Eigen::Vector3d>& planes_imu,
       reject(MatchReject::kTooFar);
       continue;
     }
-    result.lines.push_back({y, fit.point, fit.direction});
+    result.lines.push_back({y, fit.point, fit.direction, std::hypot(config.point_sigma, fit.thickness)});
   }
   return result;
 }

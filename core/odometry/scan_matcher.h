@@ -18,12 +18,14 @@ struct PlaneMatch {
   Eigen::Vector3d y_imu;    ///< feature point in the IMU frame [m]
   Eigen::Vector3d n_world;  ///< unit normal of the fitted plane
   double d_world;           ///< plane n . x = d [m]
+  double sigma;             ///< uncertainty of the point-to-plane distance [m]
 };
 
 struct LineMatch {
   Eigen::Vector3d y_imu;    ///< feature point in the IMU frame [m]
   Eigen::Vector3d a_world;  ///< a point of the fitted line [m]
   Eigen::Vector3d u_world;  ///< unit direction of the line
+  double sigma;             ///< uncertainty of the point-to-line distance [m]
 };
 
 enum class MatchReject : std::uint8_t {
@@ -41,6 +43,9 @@ struct MatchResult {
   std::array<std::int64_t, static_cast<std::size_t>(MatchReject::kCount)> rejected{};
 };
 
+/// Each match's sigma combines the feature's own uncertainty
+/// (config.point_sigma) with the thickness of the fit:
+/// sigma^2 = point_sigma^2 + thickness^2, so a poor fit counts less.
 /// Associates planar features with `plane_map` and edge features with
 /// `edge_map` (both world frame), features given in the IMU frame at T_world_imu.
 MatchResult matchFeatures(const std::vector<Eigen::Vector3d>& planes_imu,

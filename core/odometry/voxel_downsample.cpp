@@ -45,7 +45,20 @@ std::vector<Eigen::Vector3f> voxelDownsample(const std::vector<Eigen::Vector3f>&
             [](const auto* a, const auto* b) { return a->first_index < b->first_index; });
   std::vector<Eigen::Vector3f> result;
   result.reserve(ordered.size());
-  for (const auto* voxel : ordered) result.push_back((voxel->sum / voxel->count).cast<float>());
+  // The point nearest to each voxel's centroid represents it: a centroid of
+  // points from two surfaces (a floor and a wall at their crease) would lie
+  // on neither, a real point lies on its surface.
+  std::unordered_map<std::uint64_t, std::pair<float, std::uint32_t>> nearest;
+  nearest.reserve(voxels.size());
+  for (std::uint32_t i = 0; i < points.size(); ++i) {
+    const std::uint64_t key = voxelKey(points[i], inverse_size);
+    const VoxelAccumulator& voxel = voxels.at(key);
+    const float d2 = (points[i] - (voxel.sum / voxel.count).cast<float>()).squaredNorm();
+    auto [it, inserted] = nearest.try_emplace(key, d2, i);
+    if (!inserted && d2 < it->second.first) it->second = {d2, i};
+  }
+  for (const auto* voxel : ordered)
+    result.push_back(points[nearest.at(voxelKey(points[voxel->first_index], inverse_size)).second]);
   return result;
 }
 

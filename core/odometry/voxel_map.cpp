@@ -115,6 +115,7 @@ PlaneFit fitPlane(const std::vector<Eigen::Vector3f>& points, double max_distanc
     return fit;
   fit.normal = solver.eigenvectors().col(0).normalized();
   fit.d = fit.normal.dot(mean);
+  fit.thickness = std::sqrt(std::max(solver.eigenvalues()(0), 0.0));
   for (const auto& p : points)
     if (std::abs(fit.normal.dot(p.cast<double>()) - fit.d) > max_distance) return fit;
   fit.valid = true;
@@ -130,6 +131,7 @@ LineFit fitLine(const std::vector<Eigen::Vector3f>& points, double min_ratio) {
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(covariance);
   fit.point = mean;
   fit.direction = solver.eigenvectors().col(2).normalized();
+  fit.thickness = std::sqrt(std::max(solver.eigenvalues()(0) + solver.eigenvalues()(1), 0.0));
   fit.valid = solver.eigenvalues()(2) > min_ratio * solver.eigenvalues()(1) &&
               solver.eigenvalues()(2) > 1e-8;
   return fit;

@@ -55,6 +55,7 @@ class VoxelMap {
 struct PlaneFit {
   Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();
   double d = 0.0;
+  double thickness = 0.0;  ///< RMS distance of the points to the plane [m]
   bool valid = false;
 };
 PlaneFit fitPlane(const std::vector<Eigen::Vector3f>& points, double max_distance);
@@ -64,6 +65,7 @@ PlaneFit fitPlane(const std::vector<Eigen::Vector3f>& points, double max_distanc
 struct LineFit {
   Eigen::Vector3d point = Eigen::Vector3d::Zero();
   Eigen::Vector3d direction = Eigen::Vector3d::UnitX();
+  double thickness = 0.0;  ///< RMS distance of the points to the line [m]
   bool valid = false;
 };
 LineFit fitLine(const std::vector<Eigen::Vector3f>& points, double min_ratio);

@@ -40,8 +40,9 @@ BagWriter::BagWriter(const std::string& path, BagCompression compression)
     : impl_(std::make_unique<Impl>()), path_(path) {
   try {
     impl_->bag.open(path, rosbag::bagmode::Write);
-    impl_->bag.setCompression(compression == BagCompression::kLz4 ? rosbag::compression::LZ4
-                                                                 : rosbag::compression::Uncompressed);
+    impl_->bag.setCompression(compression == BagCompression::kLz4
+                                  ? rosbag::compression::LZ4
+                                  : rosbag::compression::Uncompressed);
   } catch (const std::exception& e) {
     throw Error(path + ": cannot open the bag for writing: " + e.what());
   }

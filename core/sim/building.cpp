@@ -30,8 +30,8 @@ struct Rect {
 
 /// `outer` minus `hole` as up to four rectangles (hole clipped to outer).
 std::vector<Rect> rectMinus(const Rect& outer, const Rect& hole) {
-  const Rect h{std::max(outer.x0, hole.x0), std::max(outer.y0, hole.y0), std::min(outer.x1, hole.x1),
-               std::min(outer.y1, hole.y1)};
+  const Rect h{std::max(outer.x0, hole.x0), std::max(outer.y0, hole.y0),
+               std::min(outer.x1, hole.x1), std::min(outer.y1, hole.y1)};
   if (h.x0 >= h.x1 || h.y0 >= h.y1) return {outer};
   return {{outer.x0, outer.y0, outer.x1, h.y0},
           {outer.x0, h.y1, outer.x1, outer.y1},
@@ -106,7 +106,8 @@ class Generator {
     x_turn_east_ = L_ - wt_ / 2 - kEndClearance;
     x_start_ = std::max(spec_.robot.start_offset, x_turn_west_ + 1.2);
     if (x_start_ > std::min(x_turn_east_, hasStairs() ? x_west_lane_ : x_turn_east_) - 1.5)
-      throw Error(spec_.source + ": key 'robot.start_offset' leaves no room to walk east of the start");
+      throw Error(spec_.source +
+                  ": key 'robot.start_offset' leaves no room to walk east of the start");
 
     // Rooms: south side over the whole corridor, north side on both sides of the stairwell.
     splitRooms(0.0, L_, south_rooms_);
@@ -151,9 +152,11 @@ class Generator {
     auto box = [&](double u0, double u1, double zz0, double zz1, double thickness, Surface s) {
       if (u1 - u0 < 1e-6 || zz1 - zz0 < 1e-6) return;
       if (along_x)
-        out_.mesh.addBox(Vector3d(u0, c - thickness / 2, zz0), Vector3d(u1, c + thickness / 2, zz1), s);
+        out_.mesh.addBox(Vector3d(u0, c - thickness / 2, zz0), Vector3d(u1, c + thickness / 2, zz1),
+                         s);
       else
-        out_.mesh.addBox(Vector3d(c - thickness / 2, u0, zz0), Vector3d(c + thickness / 2, u1, zz1), s);
+        out_.mesh.addBox(Vector3d(c - thickness / 2, u0, zz0), Vector3d(c + thickness / 2, u1, zz1),
+                         s);
     };
     double u = a;
     for (const Opening& o : openings) {
@@ -174,12 +177,15 @@ class Generator {
     std::vector<Rect> parts{outer};
     if (hasStairs() && k > 0 && k < storeyCount()) {
       const double half = b_.stairwell.width / 2;
-      parts = rectMinus(outer, {xs_ - half + wt_ / 2, y_flights_, xs_ + half - wt_ / 2, y_back_ - wt_ / 2});
+      parts = rectMinus(
+          outer, {xs_ - half + wt_ / 2, y_flights_, xs_ + half - wt_ / 2, y_back_ - wt_ / 2});
     }
     for (const Rect& r : parts) {
       // Upper half reads as floor, lower half as ceiling.
-      out_.mesh.addBox(Vector3d(r.x0, r.y0, top - t / 2), Vector3d(r.x1, r.y1, top), Surface::kFloor);
-      out_.mesh.addBox(Vector3d(r.x0, r.y0, top - t), Vector3d(r.x1, r.y1, top - t / 2), Surface::kCeiling);
+      out_.mesh.addBox(Vector3d(r.x0, r.y0, top - t / 2), Vector3d(r.x1, r.y1, top),
+                       Surface::kFloor);
+      out_.mesh.addBox(Vector3d(r.x0, r.y0, top - t), Vector3d(r.x1, r.y1, top - t / 2),
+                       Surface::kCeiling);
     }
   }
 
@@ -221,7 +227,8 @@ class Generator {
       return o;
     };
     std::vector<Opening> north = corridorOpenings(north_rooms_);
-    if (hasStairs()) north.push_back({xs_ - half + wt_ / 2, xs_ + half - wt_ / 2, zf, zf + 2.3, false});
+    if (hasStairs())
+      north.push_back({xs_ - half + wt_ / 2, xs_ + half - wt_ / 2, zf, zf + 2.3, false});
     addWall(true, -yc_, 0.0, L_, z0, z1, corridorOpenings(south_rooms_));
     addWall(true, yc_, 0.0, L_, z0, z1, north);
 
@@ -252,7 +259,8 @@ class Generator {
     for (const Room& r : north ? north_rooms_ : south_rooms_) {
       if (x1 > r.door0 - 0.15 && x0 < r.door1 + 0.15) return false;
       if (r.glass_front && x1 > r.x0 && x0 < r.x1) {
-        // Objects in front of glass are fine, but keep the view: allow only low ones (checked by caller).
+        // Objects in front of glass are fine, but keep the view: allow only low ones (checked by
+        // caller).
       }
     }
     if (north && hasStairs() && x1 > xs_ - b_.stairwell.width / 2 - 0.2 &&
@@ -279,8 +287,8 @@ class Generator {
           const double x0 = x - 0.2, x1 = x + 0.2;
           if (!corridorSpotFree(north, x0, x1)) continue;
           const double y_in = side * (face - 0.12), y_out = side * (face + wt_ / 2);
-          out_.mesh.addBox(Vector3d(x0, std::min(y_in, y_out), zf), Vector3d(x1, std::max(y_in, y_out), ceiling),
-                           Surface::kPillar);
+          out_.mesh.addBox(Vector3d(x0, std::min(y_in, y_out), zf),
+                           Vector3d(x1, std::max(y_in, y_out), ceiling), Surface::kPillar);
           used.push_back({x0, x1});
         }
       }
@@ -303,14 +311,16 @@ class Generator {
           const double depth = rng_.uniform(0.03, 0.15);
           const double bz0 = zf + rng_.uniform(0.8, 1.2), bz1 = bz0 + rng_.uniform(0.4, 0.9);
           const double y_in = side * (face - depth), y_out = side * face;
-          out_.mesh.addBox(Vector3d(x0, std::min(y_in, y_out), bz0), Vector3d(x1, std::max(y_in, y_out), bz1),
-                           Surface::kClutter, reflectivity);
+          out_.mesh.addBox(Vector3d(x0, std::min(y_in, y_out), bz0),
+                           Vector3d(x1, std::max(y_in, y_out), bz1), Surface::kClutter,
+                           reflectivity);
         } else {  // cabinet / shelf
           const double depth = rng_.uniform(0.2, 0.3);
           const double height = rng_.uniform(0.5, 2.0);
           const double y_in = side * (face - depth), y_out = side * face;
-          out_.mesh.addBox(Vector3d(x0, std::min(y_in, y_out), zf), Vector3d(x1, std::max(y_in, y_out), zf + height),
-                           Surface::kClutter, reflectivity);
+          out_.mesh.addBox(Vector3d(x0, std::min(y_in, y_out), zf),
+                           Vector3d(x1, std::max(y_in, y_out), zf + height), Surface::kClutter,
+                           reflectivity);
         }
       }
     }
@@ -335,7 +345,8 @@ class Generator {
              rng_.uniform(20.0, 90.0));
         // A chair-sized box and a round bin.
         const double chx = rng_.uniform(rx0 + 0.8, std::max(rx0 + 0.85, rx1 - 0.8));
-        box2(side, chx - 0.25, chx + 0.25, y_far - 1.4, y_far - 0.9, zf, zf + 0.9, rng_.uniform(20.0, 60.0));
+        box2(side, chx - 0.25, chx + 0.25, y_far - 1.4, y_far - 0.9, zf, zf + 0.9,
+             rng_.uniform(20.0, 60.0));
         const double bx = rng_.uniform(rx0 + 0.4, std::max(rx0 + 0.45, rx1 - 0.4));
         out_.mesh.addCylinder(Vector2d(bx, side * (y_near + 0.45)), 0.16, zf, zf + 0.55, 12,
                               Surface::kClutter, static_cast<float>(rng_.uniform(20.0, 90.0)));
@@ -370,18 +381,21 @@ class Generator {
     out_.mesh.addBox(Vector3d(wx0, y_flights_ + st.run_second, zl - kLandingThickness),
                      Vector3d(wx1, landing_back, zl), Surface::kStairs);
     // Partition between the landing and the flights' shared wall line (the gap).
-    out_.mesh.addBox(Vector3d(wx1, y_flights_ + std::min(st.run_first, st.run_second), zl - kLandingThickness),
-                     Vector3d(ex0, landing_back, zl), Surface::kStairs);
+    out_.mesh.addBox(
+        Vector3d(wx1, y_flights_ + std::min(st.run_first, st.run_second), zl - kLandingThickness),
+        Vector3d(ex0, landing_back, zl), Surface::kStairs);
     // Flight 2: west half, up towards -y, from the half landing to the next floor.
     const int second = st.risers - st.risers_first;
     for (int j = 1; j < second; ++j) {
       const double top = zl + j * r;
-      out_.mesh.addBox(Vector3d(wx0, y_flights_ + st.run_second - j * tread, top - r - kStepUnderside),
-                       Vector3d(wx1, y_flights_ + st.run_second - (j - 1) * tread, top), Surface::kStairs);
+      out_.mesh.addBox(
+          Vector3d(wx0, y_flights_ + st.run_second - j * tread, top - r - kStepUnderside),
+          Vector3d(wx1, y_flights_ + st.run_second - (j - 1) * tread, top), Surface::kStairs);
     }
     // Wall between the flights, through the whole storey.
     out_.mesh.addBox(Vector3d(xs_ - kPartitionThickness / 2, y_flights_, zf),
-                     Vector3d(xs_ + kPartitionThickness / 2, y_flights_ + std::min(st.run_first, st.run_second), z_[k + 1]),
+                     Vector3d(xs_ + kPartitionThickness / 2,
+                              y_flights_ + std::min(st.run_first, st.run_second), z_[k + 1]),
                      Surface::kWall);
   }
 
@@ -484,6 +498,8 @@ void Building::translate(const Eigen::Vector3d& offset) {
   for (RouteVertex& v : route) v.p += offset;
 }
 
-Building generateBuilding(const BuildingSpec& spec) { return Generator(spec).run(); }
+Building generateBuilding(const BuildingSpec& spec) {
+  return Generator(spec).run();
+}
 
 }  // namespace storey::sim

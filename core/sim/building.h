@@ -12,9 +12,9 @@
 namespace storey::sim {
 
 struct StoreyTruth {
-  int index = 0;          ///< 0 = ground floor
-  double floor_z = 0.0;   ///< top of the floor slab [m]
-  double ceiling_z = 0.0; ///< underside of the slab above [m]
+  int index = 0;           ///< 0 = ground floor
+  double floor_z = 0.0;    ///< top of the floor slab [m]
+  double ceiling_z = 0.0;  ///< underside of the slab above [m]
 };
 
 /// A corner of the robot's route (body centre). The robot walks straight

@@ -45,7 +45,8 @@ void readMount(YamlSection& parent, const std::string& key, Pose& pose) {
     std::vector<double> v;
     s.read("rotation_xyzw", v, 4);
     const Eigen::Quaterniond raw(v[3], v[0], v[1], v[2]);
-    if (std::abs(raw.norm() - 1.0) > 1e-3) s.fail("rotation_xyzw", "must be a unit quaternion (x y z w)");
+    if (std::abs(raw.norm() - 1.0) > 1e-3)
+      s.fail("rotation_xyzw", "must be a unit quaternion (x y z w)");
     q = raw.normalized();
   } else {
     s.section("rotation_xyzw");
@@ -66,7 +67,8 @@ void readLayout(YamlSection s, BuildingLayoutSpec& b) {
         heights.clear();
       }
     }
-    if (heights.empty()) s.fail("storey_heights", "must be a list of 1 to 64 storey heights in metres");
+    if (heights.empty())
+      s.fail("storey_heights", "must be a list of 1 to 64 storey heights in metres");
     std::vector<double> dummy;
     s.read("storey_heights", dummy, heights.size());
     b.storey_heights = heights;
@@ -130,7 +132,8 @@ void readSensors(YamlSection s, SensorsSpec& sensors) {
   YamlSection l = s.section("lidar");
   std::string model = "VLP-16";
   l.read("model", model);
-  if (model != "VLP-16") l.fail("model", "must be VLP-16 (the only simulated model), got '" + model + "'");
+  if (model != "VLP-16")
+    l.fail("model", "must be VLP-16 (the only simulated model), got '" + model + "'");
   l.read("rotation_rate_hz", sensors.lidar.rotation_rate);
   l.read("range_noise", sensors.lidar.range_noise);
   l.read("dropout", sensors.lidar.dropout);
@@ -159,59 +162,99 @@ void check(bool ok, const BuildingSpec& spec, const std::string& key, const std:
 
 void BuildingSpec::validate() const {
   const BuildingLayoutSpec& b = building;
-  check(!b.storey_heights.empty(), *this, "building.storey_heights", "must list at least one storey");
+  check(!b.storey_heights.empty(), *this, "building.storey_heights",
+        "must list at least one storey");
   for (double h : b.storey_heights)
     check(h >= 2.4 && h <= 8.0, *this, "building.storey_heights", "values must be in [2.4, 8] m");
-  check(b.slab_thickness >= 0.05 && b.slab_thickness <= 1.0, *this, "building.slab_thickness", "must be in [0.05, 1] m");
-  check(b.wall_thickness >= 0.05 && b.wall_thickness <= 0.6, *this, "building.wall_thickness", "must be in [0.05, 0.6] m");
-  check(b.corridor_width >= 1.6 && b.corridor_width <= 6.0, *this, "building.corridor_width", "must be in [1.6, 6] m");
-  check(b.corridor_length >= 6.0 && b.corridor_length <= 500.0, *this, "building.corridor_length", "must be in [6, 500] m");
-  check(b.room_depth >= 3.0 && b.room_depth <= 20.0, *this, "building.room_depth", "must be in [3, 20] m");
-  check(b.room_width >= 2.5 && b.room_width <= 30.0, *this, "building.room_width", "must be in [2.5, 30] m");
+  check(b.slab_thickness >= 0.05 && b.slab_thickness <= 1.0, *this, "building.slab_thickness",
+        "must be in [0.05, 1] m");
+  check(b.wall_thickness >= 0.05 && b.wall_thickness <= 0.6, *this, "building.wall_thickness",
+        "must be in [0.05, 0.6] m");
+  check(b.corridor_width >= 1.6 && b.corridor_width <= 6.0, *this, "building.corridor_width",
+        "must be in [1.6, 6] m");
+  check(b.corridor_length >= 6.0 && b.corridor_length <= 500.0, *this, "building.corridor_length",
+        "must be in [6, 500] m");
+  check(b.room_depth >= 3.0 && b.room_depth <= 20.0, *this, "building.room_depth",
+        "must be in [3, 20] m");
+  check(b.room_width >= 2.5 && b.room_width <= 30.0, *this, "building.room_width",
+        "must be in [2.5, 30] m");
   check(b.wings == 1 || b.wings == 2, *this, "building.wings", "must be 1 or 2");
-  check(b.door_width >= 0.7 && b.door_width < b.room_width - 0.5, *this, "building.door_width", "must be in [0.7, room_width - 0.5] m");
-  check(b.door_height >= 1.8 && b.door_height <= 2.3, *this, "building.door_height", "must be in [1.8, 2.3] m");
-  check(b.window_width > 0.2 && b.window_width < b.room_width - 0.6, *this, "building.window_width", "must be in (0.2, room_width - 0.6) m");
-  check(b.window_sill >= 0.0 && b.window_sill + b.window_height <= 2.3, *this, "building.window_height", "window_sill + window_height must be at most 2.3 m");
-  check(b.glass_front_fraction >= 0.0 && b.glass_front_fraction <= 1.0, *this, "building.glass_front_fraction", "must be in [0, 1]");
-  check(b.clutter_density >= 0.0 && b.clutter_density <= 2.0, *this, "building.clutter_density", "must be in [0, 2] per metre");
-  check(b.pillar_spacing == 0.0 || b.pillar_spacing >= 2.0, *this, "building.pillar_spacing", "must be 0 or at least 2 m");
+  check(b.door_width >= 0.7 && b.door_width < b.room_width - 0.5, *this, "building.door_width",
+        "must be in [0.7, room_width - 0.5] m");
+  check(b.door_height >= 1.8 && b.door_height <= 2.3, *this, "building.door_height",
+        "must be in [1.8, 2.3] m");
+  check(b.window_width > 0.2 && b.window_width < b.room_width - 0.6, *this, "building.window_width",
+        "must be in (0.2, room_width - 0.6) m");
+  check(b.window_sill >= 0.0 && b.window_sill + b.window_height <= 2.3, *this,
+        "building.window_height", "window_sill + window_height must be at most 2.3 m");
+  check(b.glass_front_fraction >= 0.0 && b.glass_front_fraction <= 1.0, *this,
+        "building.glass_front_fraction", "must be in [0, 1]");
+  check(b.clutter_density >= 0.0 && b.clutter_density <= 2.0, *this, "building.clutter_density",
+        "must be in [0, 2] per metre");
+  check(b.pillar_spacing == 0.0 || b.pillar_spacing >= 2.0, *this, "building.pillar_spacing",
+        "must be 0 or at least 2 m");
   const StairwellSpec& s = b.stairwell;
-  check(s.width >= 2.2 && s.width <= 6.0, *this, "building.stairwell.width", "must be in [2.2, 6] m");
-  check(s.riser >= 0.12 && s.riser <= 0.21, *this, "building.stairwell.riser", "must be in [0.12, 0.21] m");
-  check(s.tread >= 0.22 && s.tread <= 0.40, *this, "building.stairwell.tread", "must be in [0.22, 0.40] m");
-  check(s.floor_landing_depth >= 1.2 && s.floor_landing_depth <= 4.0, *this, "building.stairwell.floor_landing_depth", "must be in [1.2, 4] m");
-  check(s.half_landing_depth >= 1.0 && s.half_landing_depth <= 4.0, *this, "building.stairwell.half_landing_depth", "must be in [1, 4] m");
-  check(s.position > 0.0 && s.position < 1.0, *this, "building.stairwell.position", "must be in (0, 1)");
-  check(robot.walk_speed > 0.05 && robot.walk_speed <= 2.0, *this, "robot.walk_speed", "must be in (0.05, 2] m/s");
-  check(robot.stair_speed > 0.05 && robot.stair_speed <= 1.0, *this, "robot.stair_speed", "must be in (0.05, 1] m/s");
-  check(robot.max_accel >= 0.05 && robot.max_accel <= 3.0, *this, "robot.max_accel", "must be in [0.05, 3] m/s^2");
-  check(robot.max_lateral_accel >= 0.05 && robot.max_lateral_accel <= 3.0, *this, "robot.max_lateral_accel", "must be in [0.05, 3] m/s^2");
-  check(robot.max_yaw_rate >= 0.1 && robot.max_yaw_rate <= 3.0, *this, "robot.max_yaw_rate_deg", "must be in [6, 170] deg/s");
-  check(robot.turn_radius >= 0.1 && robot.turn_radius <= 3.0, *this, "robot.turn_radius", "must be in [0.1, 3] m");
-  check(robot.body_height >= 0.2 && robot.body_height <= 1.5, *this, "robot.body_height", "must be in [0.2, 1.5] m");
-  check(robot.lane_offset >= 0.0 && robot.lane_offset < b.corridor_width / 2 - 0.4, *this, "robot.lane_offset", "must be in [0, corridor_width/2 - 0.4) m");
-  check(robot.still_time >= 0.0 && robot.still_time <= 60.0, *this, "robot.still_time", "must be in [0, 60] s");
+  check(s.width >= 2.2 && s.width <= 6.0, *this, "building.stairwell.width",
+        "must be in [2.2, 6] m");
+  check(s.riser >= 0.12 && s.riser <= 0.21, *this, "building.stairwell.riser",
+        "must be in [0.12, 0.21] m");
+  check(s.tread >= 0.22 && s.tread <= 0.40, *this, "building.stairwell.tread",
+        "must be in [0.22, 0.40] m");
+  check(s.floor_landing_depth >= 1.2 && s.floor_landing_depth <= 4.0, *this,
+        "building.stairwell.floor_landing_depth", "must be in [1.2, 4] m");
+  check(s.half_landing_depth >= 1.0 && s.half_landing_depth <= 4.0, *this,
+        "building.stairwell.half_landing_depth", "must be in [1, 4] m");
+  check(s.position > 0.0 && s.position < 1.0, *this, "building.stairwell.position",
+        "must be in (0, 1)");
+  check(robot.walk_speed > 0.05 && robot.walk_speed <= 2.0, *this, "robot.walk_speed",
+        "must be in (0.05, 2] m/s");
+  check(robot.stair_speed > 0.05 && robot.stair_speed <= 1.0, *this, "robot.stair_speed",
+        "must be in (0.05, 1] m/s");
+  check(robot.max_accel >= 0.05 && robot.max_accel <= 3.0, *this, "robot.max_accel",
+        "must be in [0.05, 3] m/s^2");
+  check(robot.max_lateral_accel >= 0.05 && robot.max_lateral_accel <= 3.0, *this,
+        "robot.max_lateral_accel", "must be in [0.05, 3] m/s^2");
+  check(robot.max_yaw_rate >= 0.1 && robot.max_yaw_rate <= 3.0, *this, "robot.max_yaw_rate_deg",
+        "must be in [6, 170] deg/s");
+  check(robot.turn_radius >= 0.1 && robot.turn_radius <= 3.0, *this, "robot.turn_radius",
+        "must be in [0.1, 3] m");
+  check(robot.body_height >= 0.2 && robot.body_height <= 1.5, *this, "robot.body_height",
+        "must be in [0.2, 1.5] m");
+  check(robot.lane_offset >= 0.0 && robot.lane_offset < b.corridor_width / 2 - 0.4, *this,
+        "robot.lane_offset", "must be in [0, corridor_width/2 - 0.4) m");
+  check(robot.still_time >= 0.0 && robot.still_time <= 60.0, *this, "robot.still_time",
+        "must be in [0, 60] s");
   check(robot.start_offset >= 0.8, *this, "robot.start_offset", "must be at least 0.8 m");
-  check(robot.gait.frequency > 0.0 && robot.gait.frequency <= 10.0, *this, "robot.gait.frequency_hz", "must be in (0, 10] Hz");
-  check(robot.gait.bounce >= 0.0 && robot.gait.bounce <= 0.1, *this, "robot.gait.bounce", "must be in [0, 0.1] m");
+  check(robot.gait.frequency > 0.0 && robot.gait.frequency <= 10.0, *this,
+        "robot.gait.frequency_hz", "must be in (0, 10] Hz");
+  check(robot.gait.bounce >= 0.0 && robot.gait.bounce <= 0.1, *this, "robot.gait.bounce",
+        "must be in [0, 0.1] m");
   check(std::abs(robot.gait.roll) <= 0.2, *this, "robot.gait.roll_deg", "must be at most 11 deg");
   check(std::abs(robot.gait.pitch) <= 0.2, *this, "robot.gait.pitch_deg", "must be at most 11 deg");
   const LidarSpec& l = sensors.lidar;
-  check(l.rotation_rate >= 5.0 && l.rotation_rate <= 20.0, *this, "sensors.lidar.rotation_rate_hz", "must be in [5, 20] Hz");
-  check(l.range_noise >= 0.0 && l.range_noise <= 0.5, *this, "sensors.lidar.range_noise", "must be in [0, 0.5] m");
+  check(l.rotation_rate >= 5.0 && l.rotation_rate <= 20.0, *this, "sensors.lidar.rotation_rate_hz",
+        "must be in [5, 20] Hz");
+  check(l.range_noise >= 0.0 && l.range_noise <= 0.5, *this, "sensors.lidar.range_noise",
+        "must be in [0, 0.5] m");
   check(l.dropout >= 0.0 && l.dropout < 1.0, *this, "sensors.lidar.dropout", "must be in [0, 1)");
-  check(l.min_range >= 0.0 && l.min_range < l.max_range, *this, "sensors.lidar.min_range", "must be in [0, max_range)");
+  check(l.min_range >= 0.0 && l.min_range < l.max_range, *this, "sensors.lidar.min_range",
+        "must be in [0, max_range)");
   check(l.max_range <= 300.0, *this, "sensors.lidar.max_range", "must be at most 300 m");
   check(l.intensity_noise >= 0.0, *this, "sensors.lidar.intensity_noise", "must be >= 0");
   const ImuSpec& i = sensors.imu;
-  check(i.rate >= 50.0 && i.rate <= 4000.0, *this, "sensors.imu.rate_hz", "must be in [50, 4000] Hz");
+  check(i.rate >= 50.0 && i.rate <= 4000.0, *this, "sensors.imu.rate_hz",
+        "must be in [50, 4000] Hz");
   check(i.gyro_noise_density >= 0.0 && i.accel_noise_density >= 0.0 && i.gyro_random_walk >= 0.0 &&
-            i.accel_random_walk >= 0.0, *this, "sensors.imu", "noise densities must be >= 0");
-  check(i.gravity > 9.7 && i.gravity < 9.9, *this, "sensors.imu.gravity", "must be in (9.7, 9.9) m/s^2");
-  check(sensors.start_time >= 1.0 && sensors.start_time < 4.0e9, *this, "sensors.start_time", "must be in [1, 4e9) s");
-  check(!sensors.points_topic.empty() && sensors.points_topic[0] == '/', *this, "sensors.points_topic", "must start with '/'");
-  check(!sensors.imu_topic.empty() && sensors.imu_topic[0] == '/', *this, "sensors.imu_topic", "must start with '/'");
+            i.accel_random_walk >= 0.0,
+        *this, "sensors.imu", "noise densities must be >= 0");
+  check(i.gravity > 9.7 && i.gravity < 9.9, *this, "sensors.imu.gravity",
+        "must be in (9.7, 9.9) m/s^2");
+  check(sensors.start_time >= 1.0 && sensors.start_time < 4.0e9, *this, "sensors.start_time",
+        "must be in [1, 4e9) s");
+  check(!sensors.points_topic.empty() && sensors.points_topic[0] == '/', *this,
+        "sensors.points_topic", "must start with '/'");
+  check(!sensors.imu_topic.empty() && sensors.imu_topic[0] == '/', *this, "sensors.imu_topic",
+        "must start with '/'");
 }
 
 std::vector<std::string> presetNames() {

@@ -14,12 +14,12 @@ namespace storey::sim {
 
 /// The stairwell linking all storeys: two flights and a half landing per storey.
 struct StairwellSpec {
-  double width = 2.8;                ///< across both flights [m]
-  double riser = 0.17;               ///< nominal riser; the real one divides the storey height evenly [m]
-  double tread = 0.28;               ///< [m]
+  double width = 2.8;   ///< across both flights [m]
+  double riser = 0.17;  ///< nominal riser; the real one divides the storey height evenly [m]
+  double tread = 0.28;  ///< [m]
   double floor_landing_depth = 1.6;  ///< landing at each floor, between corridor and flights [m]
   double half_landing_depth = 1.4;   ///< [m]
-  double position = 0.8;             ///< centre along the corridor, as a fraction of its length [0, 1]
+  double position = 0.8;  ///< centre along the corridor, as a fraction of its length [0, 1]
 };
 
 struct BuildingLayoutSpec {
@@ -30,36 +30,37 @@ struct BuildingLayoutSpec {
   double corridor_width = 2.2;              ///< [m]
   double room_depth = 5.0;                  ///< rooms on both sides of the corridor [m]
   double room_width = 4.0;                  ///< nominal; rooms divide each side evenly [m]
-  int wings = 1;           ///< 1: stairwell near the east end; 2: corridor wings on both sides of it
-  double door_width = 0.9;    ///< [m]
-  double door_height = 2.1;   ///< [m]
-  double window_width = 1.6;  ///< glass windows in the outer walls [m]
-  double window_sill = 0.9;   ///< [m]
-  double window_height = 1.4; ///< [m]
-  double glass_front_fraction = 0.2;  ///< fraction of rooms with a glass wall to the corridor [0, 1]
-  double clutter_density = 0.35;      ///< objects per metre of corridor wall, per side [1/m]
-  double pillar_spacing = 6.0;        ///< pillars along the corridor walls; 0 = none [m]
+  int wings = 1;  ///< 1: stairwell near the east end; 2: corridor wings on both sides of it
+  double door_width = 0.9;     ///< [m]
+  double door_height = 2.1;    ///< [m]
+  double window_width = 1.6;   ///< glass windows in the outer walls [m]
+  double window_sill = 0.9;    ///< [m]
+  double window_height = 1.4;  ///< [m]
+  double glass_front_fraction =
+      0.2;                        ///< fraction of rooms with a glass wall to the corridor [0, 1]
+  double clutter_density = 0.35;  ///< objects per metre of corridor wall, per side [1/m]
+  double pillar_spacing = 6.0;    ///< pillars along the corridor walls; 0 = none [m]
   StairwellSpec stairwell;
 };
 
 struct GaitSpec {
-  double frequency = 2.5;   ///< trot frequency [Hz]
-  double bounce = 0.015;    ///< vertical amplitude [m]
-  double roll = 0.0175;     ///< roll amplitude [rad] (YAML: degrees)
-  double pitch = 0.014;     ///< pitch amplitude [rad] (YAML: degrees)
+  double frequency = 2.5;  ///< trot frequency [Hz]
+  double bounce = 0.015;   ///< vertical amplitude [m]
+  double roll = 0.0175;    ///< roll amplitude [rad] (YAML: degrees)
+  double pitch = 0.014;    ///< pitch amplitude [rad] (YAML: degrees)
 };
 
 struct RobotSpec {
-  double walk_speed = 0.8;         ///< cruise speed on floors [m/s]
-  double stair_speed = 0.3;        ///< speed along the stair slope [m/s]
-  double max_accel = 0.4;          ///< along the path [m/s^2]
-  double max_lateral_accel = 0.35; ///< in turns [m/s^2]
-  double max_yaw_rate = 0.7;       ///< [rad/s] (YAML: degrees/s)
-  double turn_radius = 0.5;        ///< corner fillet radius, reduced where space is short [m]
-  double body_height = 0.5;        ///< body centre above the floor / stair line [m]
-  double lane_offset = 0.35;       ///< walking lanes at +-offset from the corridor axis [m]
-  double still_time = 2.0;         ///< standing still at start and end [s]
-  double start_offset = 2.5;       ///< start position from the west end of the corridor [m]
+  double walk_speed = 0.8;          ///< cruise speed on floors [m/s]
+  double stair_speed = 0.3;         ///< speed along the stair slope [m/s]
+  double max_accel = 0.4;           ///< along the path [m/s^2]
+  double max_lateral_accel = 0.35;  ///< in turns [m/s^2]
+  double max_yaw_rate = 0.7;        ///< [rad/s] (YAML: degrees/s)
+  double turn_radius = 0.5;         ///< corner fillet radius, reduced where space is short [m]
+  double body_height = 0.5;         ///< body centre above the floor / stair line [m]
+  double lane_offset = 0.35;        ///< walking lanes at +-offset from the corridor axis [m]
+  double still_time = 2.0;          ///< standing still at start and end [s]
+  double start_offset = 2.5;        ///< start position from the west end of the corridor [m]
   GaitSpec gait;
 };
 
@@ -73,22 +74,22 @@ struct LidarSpec {
 };
 
 struct ImuSpec {
-  double rate = 400.0;                 ///< [Hz]
-  double gyro_noise_density = 1.75e-4; ///< [rad/s/sqrt(Hz)]
-  double accel_noise_density = 5.9e-4; ///< [m/s^2/sqrt(Hz)]
-  double gyro_random_walk = 1.0e-5;    ///< [rad/s^2/sqrt(Hz)]
-  double accel_random_walk = 1.0e-4;   ///< [m/s^3/sqrt(Hz)]
-  double gravity = 9.81;               ///< [m/s^2]
-  Eigen::Vector3d gyro_bias{0.002, -0.0015, 0.001};   ///< initial bias [rad/s]
-  Eigen::Vector3d accel_bias{0.03, -0.02, 0.04};      ///< initial bias [m/s^2]
+  double rate = 400.0;                               ///< [Hz]
+  double gyro_noise_density = 1.75e-4;               ///< [rad/s/sqrt(Hz)]
+  double accel_noise_density = 5.9e-4;               ///< [m/s^2/sqrt(Hz)]
+  double gyro_random_walk = 1.0e-5;                  ///< [rad/s^2/sqrt(Hz)]
+  double accel_random_walk = 1.0e-4;                 ///< [m/s^3/sqrt(Hz)]
+  double gravity = 9.81;                             ///< [m/s^2]
+  Eigen::Vector3d gyro_bias{0.002, -0.0015, 0.001};  ///< initial bias [rad/s]
+  Eigen::Vector3d accel_bias{0.03, -0.02, 0.04};     ///< initial bias [m/s^2]
 };
 
 struct SensorsSpec {
   Pose T_body_lidar{Eigen::Quaterniond::Identity(), Eigen::Vector3d(0.25, 0.0, 0.12)};
-  Pose T_body_imu;                      ///< IMU at the body centre by default
+  Pose T_body_imu;  ///< IMU at the body centre by default
   LidarSpec lidar;
   ImuSpec imu;
-  double start_time = 1.7e9;            ///< stamp of the first sample [s since epoch]
+  double start_time = 1.7e9;  ///< stamp of the first sample [s since epoch]
   std::string points_topic = "/velodyne_points";
   std::string imu_topic = "/imu/data";
   std::string lidar_frame_id = "velodyne";
@@ -97,8 +98,8 @@ struct SensorsSpec {
 
 struct BuildingSpec {
   std::string name = "custom";
-  std::string source;          ///< file or preset it came from (for messages)
-  std::uint64_t seed = 1;      ///< clutter layout and sensor noise
+  std::string source;      ///< file or preset it came from (for messages)
+  std::uint64_t seed = 1;  ///< clutter layout and sensor noise
   BuildingLayoutSpec building;
   RobotSpec robot;
   SensorsSpec sensors;

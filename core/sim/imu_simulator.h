@@ -14,8 +14,8 @@
 namespace storey::sim {
 
 struct ImuSimulation {
-  std::vector<ImuSample> samples;   ///< stamps relative to the start of the simulation [ns]
-  std::vector<Pose> T_world_imu;    ///< true pose at each sample
+  std::vector<ImuSample> samples;  ///< stamps relative to the start of the simulation [ns]
+  std::vector<Pose> T_world_imu;   ///< true pose at each sample
   std::vector<Eigen::Vector3d> gyro_bias, accel_bias;  ///< true biases at each sample
 };
 

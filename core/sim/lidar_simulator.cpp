@@ -100,7 +100,8 @@ Scan LidarSimulator::simulateScan(int n) const {
       ScanPoint point;
       point.p = (range * dirs_lidar[id]).cast<float>();
       point.intensity = static_cast<float>(std::clamp(std::round(intensity), 0.0, 255.0));
-      point.time = static_cast<float>((t_ns + id * vlp16::kFiringIntervalNs - scan.stamp_ns) * 1e-9);
+      point.time =
+          static_cast<float>((t_ns + id * vlp16::kFiringIntervalNs - scan.stamp_ns) * 1e-9);
       point.ring = static_cast<std::uint16_t>(vlp16::ring(id));
       scan.points.push_back(point);
     }

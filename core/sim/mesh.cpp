@@ -13,28 +13,44 @@ namespace storey::sim {
 
 const char* toString(Surface surface) {
   switch (surface) {
-    case Surface::kFloor: return "floor";
-    case Surface::kCeiling: return "ceiling";
-    case Surface::kWall: return "wall";
-    case Surface::kStairs: return "stairs";
-    case Surface::kClutter: return "clutter";
-    case Surface::kPillar: return "pillar";
-    case Surface::kGlass: return "glass";
-    case Surface::kDoorFrame: return "door_frame";
+    case Surface::kFloor:
+      return "floor";
+    case Surface::kCeiling:
+      return "ceiling";
+    case Surface::kWall:
+      return "wall";
+    case Surface::kStairs:
+      return "stairs";
+    case Surface::kClutter:
+      return "clutter";
+    case Surface::kPillar:
+      return "pillar";
+    case Surface::kGlass:
+      return "glass";
+    case Surface::kDoorFrame:
+      return "door_frame";
   }
   return "unknown";
 }
 
 float surfaceReflectivity(Surface surface) {
   switch (surface) {
-    case Surface::kFloor: return 25.0f;
-    case Surface::kCeiling: return 70.0f;
-    case Surface::kWall: return 55.0f;
-    case Surface::kStairs: return 35.0f;
-    case Surface::kClutter: return 40.0f;
-    case Surface::kPillar: return 60.0f;
-    case Surface::kGlass: return 0.0f;
-    case Surface::kDoorFrame: return 90.0f;
+    case Surface::kFloor:
+      return 25.0f;
+    case Surface::kCeiling:
+      return 70.0f;
+    case Surface::kWall:
+      return 55.0f;
+    case Surface::kStairs:
+      return 35.0f;
+    case Surface::kClutter:
+      return 40.0f;
+    case Surface::kPillar:
+      return 60.0f;
+    case Surface::kGlass:
+      return 0.0f;
+    case Surface::kDoorFrame:
+      return 90.0f;
   }
   return 40.0f;
 }
@@ -121,8 +137,8 @@ double TriangleMesh::distanceTo(const Eigen::Vector3d& x, bool returning_only) c
   double best = std::numeric_limits<double>::infinity();
   for (const Triangle& t : triangles_) {
     if (returning_only && !returnsLight(t.surface)) continue;
-    best = std::min(best, pointTriangleDistance(x, vertices_[t.v[0]], vertices_[t.v[1]],
-                                                vertices_[t.v[2]]));
+    best = std::min(
+        best, pointTriangleDistance(x, vertices_[t.v[0]], vertices_[t.v[1]], vertices_[t.v[2]]));
   }
   return best;
 }
@@ -140,7 +156,8 @@ void TriangleMesh::writePly(const std::string& path) const {
   writeFileAtomically(path, [&](std::ostream& out) {
     out << "ply\nformat binary_little_endian 1.0\n"
         << "comment Storey simulated building; world frame (z up, origin at the LiDAR start)\n"
-        << "comment surface: 0 floor 1 ceiling 2 wall 3 stairs 4 clutter 5 pillar 6 glass 7 door_frame\n"
+        << "comment surface: 0 floor 1 ceiling 2 wall 3 stairs 4 clutter 5 pillar 6 glass 7 "
+           "door_frame\n"
         << "comment returns: 0 = the simulated LiDAR sees through this face (glass)\n"
         << "element vertex " << vertices_.size() << "\n"
         << "property double x\nproperty double y\nproperty double z\n"

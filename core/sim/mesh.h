@@ -22,12 +22,14 @@ enum class Surface : std::uint8_t {
 const char* toString(Surface surface);
 /// Diffuse reflectivity reported as VLP-16 calibrated intensity [0, 255] at normal incidence.
 float surfaceReflectivity(Surface surface);
-inline bool returnsLight(Surface surface) { return surface != Surface::kGlass; }
+inline bool returnsLight(Surface surface) {
+  return surface != Surface::kGlass;
+}
 
 struct Triangle {
-  std::uint32_t v[3];      ///< vertex indices, counter-clockwise seen from outside
+  std::uint32_t v[3];  ///< vertex indices, counter-clockwise seen from outside
   Surface surface;
-  float reflectivity;      ///< [0, 255]
+  float reflectivity;  ///< [0, 255]
 };
 
 class TriangleMesh {

@@ -30,9 +30,8 @@ RayCaster::RayCaster(const TriangleMesh& mesh) : impl_(std::make_unique<Impl>())
   rtcSetSceneBuildQuality(impl_->scene, RTC_BUILD_QUALITY_HIGH);
   RTCGeometry geometry = rtcNewGeometry(impl_->device, RTC_GEOMETRY_TYPE_TRIANGLE);
   const auto& vertices = mesh.vertices();
-  auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0,
-                                                        RTC_FORMAT_FLOAT3, 3 * sizeof(float),
-                                                        vertices.size()));
+  auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(
+      geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), vertices.size()));
   for (std::size_t i = 0; i < vertices.size(); ++i) {
     v[3 * i] = static_cast<float>(vertices[i].x());
     v[3 * i + 1] = static_cast<float>(vertices[i].y());
@@ -41,9 +40,9 @@ RayCaster::RayCaster(const TriangleMesh& mesh) : impl_(std::make_unique<Impl>())
   const auto& triangles = mesh.triangles();
   for (std::uint32_t i = 0; i < triangles.size(); ++i)
     if (returnsLight(triangles[i].surface)) impl_->triangle_of_primitive.push_back(i);
-  auto* index = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
-      geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned),
-      impl_->triangle_of_primitive.size()));
+  auto* index = static_cast<unsigned*>(
+      rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                              3 * sizeof(unsigned), impl_->triangle_of_primitive.size()));
   for (std::size_t k = 0; k < impl_->triangle_of_primitive.size(); ++k) {
     const Triangle& t = triangles[impl_->triangle_of_primitive[k]];
     for (int c = 0; c < 3; ++c) index[3 * k + c] = t.v[c];

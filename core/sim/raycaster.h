@@ -12,9 +12,10 @@
 namespace storey::sim {
 
 struct RayHit {
-  float distance = std::numeric_limits<float>::infinity();  ///< along the unit direction [m]; inf = none
-  std::uint32_t triangle = 0;       ///< index into TriangleMesh::triangles()
-  float cos_incidence = 1.0f;       ///< |cos| of the angle between ray and surface normal
+  float distance =
+      std::numeric_limits<float>::infinity();  ///< along the unit direction [m]; inf = none
+  std::uint32_t triangle = 0;                  ///< index into TriangleMesh::triangles()
+  float cos_incidence = 1.0f;  ///< |cos| of the angle between ray and surface normal
 };
 
 class RayCaster {

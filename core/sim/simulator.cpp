@@ -108,14 +108,19 @@ class StagingDir {
     std::error_code ec;
     if (!fs::exists(target_, ec)) {
       fs::rename(path_, target_, ec);
-      if (ec) throw Error(target_.string() + ": cannot move the finished output into place: " + ec.message());
+      if (ec)
+        throw Error(target_.string() +
+                    ": cannot move the finished output into place: " + ec.message());
       committed_ = true;
       return;
     }
-    if (!fs::is_directory(target_, ec)) throw Error(target_.string() + ": exists and is not a folder");
+    if (!fs::is_directory(target_, ec))
+      throw Error(target_.string() + ": exists and is not a folder");
     for (const auto& entry : fs::directory_iterator(path_)) {
       fs::rename(entry.path(), target_ / entry.path().filename(), ec);
-      if (ec) throw Error((target_ / entry.path().filename()).string() + ": cannot move into place: " + ec.message());
+      if (ec)
+        throw Error((target_ / entry.path().filename()).string() +
+                    ": cannot move into place: " + ec.message());
     }
     fs::remove_all(path_, ec);
     committed_ = true;
@@ -145,8 +150,9 @@ SimulationResult simulate(const BuildingSpec& spec, const SimulationOptions& opt
   SimulationResult result;
   result.out_dir = out_dir;
   result.walk_duration = trajectory.duration();
-  result.duration = options.max_duration > 0.0 ? std::min(options.max_duration, trajectory.duration())
-                                                : trajectory.duration();
+  result.duration = options.max_duration > 0.0
+                        ? std::min(options.max_duration, trajectory.duration())
+                        : trajectory.duration();
   result.path_length = trajectory.pathLength();
   result.triangles = world.building.mesh.triangles().size();
   result.storeys = static_cast<int>(world.building.storeys.size());
@@ -192,15 +198,19 @@ SimulationResult simulate(const BuildingSpec& spec, const SimulationOptions& opt
   };
 
   std::ostringstream lidar_truth;
-  lidar_truth << "# timestamp x y z qx qy qz qw (LiDAR frame in the world frame, at each scan's stamp)\n";
-  const int threads = options.threads > 0 ? options.threads : tbb::this_task_arena::max_concurrency();
+  lidar_truth
+      << "# timestamp x y z qx qy qz qw (LiDAR frame in the world frame, at each scan's stamp)\n";
+  const int threads =
+      options.threads > 0 ? options.threads : tbb::this_task_arena::max_concurrency();
   tbb::task_arena arena(threads);
   const int chunk = std::max(8, 4 * threads);
   // Ray-cast the next chunk of scans while this thread writes the previous one.
   auto castChunk = [&](int first) {
-    std::vector<Scan> out(static_cast<std::size_t>(std::max(0, std::min(chunk, scan_count - first))));
+    std::vector<Scan> out(
+        static_cast<std::size_t>(std::max(0, std::min(chunk, scan_count - first))));
     arena.execute([&] {
-      tbb::parallel_for(0, static_cast<int>(out.size()), [&](int i) { out[i] = lidar.simulateScan(first + i); });
+      tbb::parallel_for(0, static_cast<int>(out.size()),
+                        [&](int i) { out[i] = lidar.simulateScan(first + i); });
     });
     return out;
   };
@@ -208,7 +218,8 @@ SimulationResult simulate(const BuildingSpec& spec, const SimulationOptions& opt
   for (int first = 0; first < scan_count; first += chunk) {
     report(progress, static_cast<double>(first) / std::max(1, scan_count), "ray-casting scans");
     std::vector<Scan> scans = pending.get();
-    if (first + chunk < scan_count) pending = std::async(std::launch::async, castChunk, first + chunk);
+    if (first + chunk < scan_count)
+      pending = std::async(std::launch::async, castChunk, first + chunk);
     for (std::size_t i = 0; i < scans.size(); ++i) {
       Scan& scan = scans[i];
       const int n = first + static_cast<int>(i);

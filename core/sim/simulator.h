@@ -29,15 +29,15 @@ struct SimulationOptions {
 
 struct SimulationResult {
   std::string out_dir;
-  double duration = 0.0;        ///< simulated time [s]
-  double walk_duration = 0.0;   ///< the whole planned walk [s]
-  double path_length = 0.0;     ///< planned walking distance [m]
+  double duration = 0.0;       ///< simulated time [s]
+  double walk_duration = 0.0;  ///< the whole planned walk [s]
+  double path_length = 0.0;    ///< planned walking distance [m]
   std::int64_t scans = 0;
   std::int64_t points = 0;
   std::int64_t imu_samples = 0;
   std::size_t triangles = 0;
   int storeys = 0;
-  double wall_time = 0.0;       ///< [s]
+  double wall_time = 0.0;  ///< [s]
 };
 
 /// Runs the simulation and writes the output folder (created if missing; its

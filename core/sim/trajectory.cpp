@@ -24,7 +24,9 @@ struct PathSample {
   double t = 0.0;     ///< planned time from the start of the walk [s]
 };
 
-double wrapAngle(double a) { return std::remainder(a, 2.0 * M_PI); }
+double wrapAngle(double a) {
+  return std::remainder(a, 2.0 * M_PI);
+}
 
 double smoothstep(double x) {
   x = std::clamp(x, 0.0, 1.0);
@@ -106,7 +108,8 @@ std::vector<PathSample> densePath(const std::vector<RouteVertex>& route, const R
     if (i + 1 >= n || tangent[i] <= 0.0) continue;
     const double r = radius[i], theta = angle[i];
     const Vector3d A = v[i].p - tangent[i] * dir[i - 1];
-    const Vector3d towards = (dir[i] - dir[i - 1]).normalized();  // from A to the centre, scaled below
+    const Vector3d towards =
+        (dir[i] - dir[i - 1]).normalized();  // from A to the centre, scaled below
     // Centre: from A along the in-plane normal to dir[i-1].
     const Vector3d normal = (towards - towards.dot(dir[i - 1]) * dir[i - 1]).normalized();
     const Vector3d centre = A + r * normal;
@@ -130,12 +133,14 @@ std::vector<PathSample> densePath(const std::vector<RouteVertex>& route, const R
   out.front().v = 0.0;
   for (std::size_t k = 1; k < out.size(); ++k) {
     const double ds = out[k].s - out[k - 1].s;
-    out[k].v = std::min(out[k].vmax, std::sqrt(out[k - 1].v * out[k - 1].v + 2 * robot.max_accel * ds));
+    out[k].v =
+        std::min(out[k].vmax, std::sqrt(out[k - 1].v * out[k - 1].v + 2 * robot.max_accel * ds));
   }
   out.back().v = 0.0;
   for (std::size_t k = out.size() - 1; k-- > 0;) {
     const double ds = out[k + 1].s - out[k].s;
-    out[k].v = std::min(out[k].v, std::sqrt(out[k + 1].v * out[k + 1].v + 2 * robot.max_accel * ds));
+    out[k].v =
+        std::min(out[k].v, std::sqrt(out[k + 1].v * out[k + 1].v + 2 * robot.max_accel * ds));
   }
   out.front().v = 0.0;
   for (std::size_t k = 1; k < out.size(); ++k) {
@@ -189,7 +194,8 @@ Trajectory::Trajectory(const std::vector<RouteVertex>& route, const RobotSpec& r
     const double target_yaw = std::atan2(d.y(), d.x());
     yaw = k == 0 ? target_yaw : yaw + wrapAngle(target_yaw - yaw);
     Channels c;
-    c << p.x(), p.y(), p.z(), yaw, -std::atan2(d.z(), horizontal), smoothstep(speed / kGaitFullSpeed);
+    c << p.x(), p.y(), p.z(), yaw, -std::atan2(d.z(), horizontal),
+        smoothstep(speed / kGaitFullSpeed);
     control_.push_back(c);
   }
 }

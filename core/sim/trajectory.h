@@ -17,11 +17,11 @@ namespace storey::sim {
 /// Kinematics of a rigid frame at one time, in the world frame unless named.
 struct FrameKinematics {
   Pose T_world_frame;
-  Eigen::Vector3d v_world = Eigen::Vector3d::Zero();       ///< [m/s]
-  Eigen::Vector3d a_world = Eigen::Vector3d::Zero();       ///< [m/s^2]
-  Eigen::Vector3d omega_frame = Eigen::Vector3d::Zero();   ///< angular rate in the frame [rad/s]
-  Eigen::Matrix3d dR = Eigen::Matrix3d::Zero();            ///< d/dt R_world_frame
-  Eigen::Matrix3d ddR = Eigen::Matrix3d::Zero();           ///< d2/dt2 R_world_frame
+  Eigen::Vector3d v_world = Eigen::Vector3d::Zero();      ///< [m/s]
+  Eigen::Vector3d a_world = Eigen::Vector3d::Zero();      ///< [m/s^2]
+  Eigen::Vector3d omega_frame = Eigen::Vector3d::Zero();  ///< angular rate in the frame [rad/s]
+  Eigen::Matrix3d dR = Eigen::Matrix3d::Zero();           ///< d/dt R_world_frame
+  Eigen::Matrix3d ddR = Eigen::Matrix3d::Zero();          ///< d2/dt2 R_world_frame
 };
 
 class Trajectory {
@@ -30,9 +30,11 @@ class Trajectory {
   /// robot.still_time at both ends; ends exactly where it started.
   Trajectory(const std::vector<RouteVertex>& route, const RobotSpec& robot);
 
-  double duration() const { return duration_; }      ///< [s], t in [0, duration]
-  double pathLength() const { return path_length_; } ///< planned walking distance [m]
-  double stillTime() const { return still_time_; }   ///< exactly still in [0, t] and [duration - t, duration]
+  double duration() const { return duration_; }       ///< [s], t in [0, duration]
+  double pathLength() const { return path_length_; }  ///< planned walking distance [m]
+  double stillTime() const {
+    return still_time_;
+  }  ///< exactly still in [0, t] and [duration - t, duration]
 
   /// The body frame (t clamped to [0, duration]).
   FrameKinematics body(double t) const;

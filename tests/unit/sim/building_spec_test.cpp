@@ -72,9 +72,10 @@ TEST(SimSpec, PresetWalksHaveTheAdvertisedSize) {
     int storeys;
     double min_length, max_length, min_duration, max_duration;
   };
-  for (const Expect& e : {Expect{"tiny", 1, 8, 16, 15, 28}, Expect{"default", 3, 100, 250, 120, 420},
-                          Expect{"building-a", 5, 350, 460, 450, 1100},
-                          Expect{"building-b", 6, 540, 680, 700, 1500}}) {
+  for (const Expect& e :
+       {Expect{"tiny", 1, 8, 16, 15, 28}, Expect{"default", 3, 100, 250, 120, 420},
+        Expect{"building-a", 5, 350, 460, 450, 1100},
+        Expect{"building-b", 6, 540, 680, 700, 1500}}) {
     const World world = makeWorld(loadBuildingSpec(e.name));
     EXPECT_EQ(static_cast<int>(world.building.storeys.size()), e.storeys) << e.name;
     EXPECT_GE(world.trajectory.pathLength(), e.min_length) << e.name;

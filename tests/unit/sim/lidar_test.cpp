@@ -36,14 +36,16 @@ TEST(SimLidar, Vlp16FiringOrderAndRings) {
   EXPECT_EQ(rings.size(), 16u);
   EXPECT_EQ(vlp16::ring(0), 0);
   EXPECT_EQ(vlp16::ring(15), 15);
-  EXPECT_EQ(vlp16::kSequencePeriodNs, 24 * vlp16::kFiringIntervalNs);  // 16 firings + 8 recharge slots
+  EXPECT_EQ(vlp16::kSequencePeriodNs,
+            24 * vlp16::kFiringIntervalNs);  // 16 firings + 8 recharge slots
 }
 
 /// A scan taken while walking: rings, azimuth steps, timing, and every point
 /// lying on the true mesh when placed with the true pose at its own time.
 TEST(SimLidar, NoiseFreeScanMatchesTheSensorAndTheMesh) {
   const TinyFixture& f = tiny();
-  const LidarSimulator lidar(f.world.building.mesh, f.world.trajectory, f.spec.sensors, LidarNoise{}, 1);
+  const LidarSimulator lidar(f.world.building.mesh, f.world.trajectory, f.spec.sensors,
+                             LidarNoise{}, 1);
   const int n = 60;  // 6 s: walking
   ASSERT_GT(f.world.trajectory.body(lidar.scanStampNs(n) * 1e-9).v_world.norm(), 0.3);
   const Scan scan = lidar.simulateScan(n);
@@ -109,8 +111,36 @@ TEST(SimLidar, NoiseFreeScanMatchesTheSensorAndTheMesh) {
   double distorted = 0.0;
   const Pose T_stamp = f.world.trajectory.frame(scan.stamp_ns * 1e-9, T_body_lidar).T_world_frame;
   for (std::size_t i = scan.points.size() - 2000; i < scan.points.size(); i += 7)
-    distorted = std::max(distorted, f.world.building.mesh.distanceTo(T_stamp * scan.points[i].p.cast<double>()));
+    distorted = std::max(
+        distorted, f.world.building.mesh.distanceTo(T_stamp * scan.points[i].p.cast<double>()));
   EXPECT_GT(distorted, 0.03);
+}
+
+/// On the stairs of a three-storey building (pitched, climbing, bouncing),
+/// noise-free points still lie on the mesh.
+TEST(SimLidar, NoiseFreeScanOnTheStairsLiesOnTheMesh) {
+  const BuildingSpec spec = loadBuildingSpec("default");
+  const World world = makeWorld(spec);
+  const LidarSimulator lidar(world.building.mesh, world.trajectory, spec.sensors, LidarNoise{}, 1);
+  int n = 0;
+  for (; n < lidar.scanCount(world.trajectory.duration()); ++n) {
+    const FrameKinematics k = world.trajectory.body(lidar.scanStampNs(n) * 1e-9);
+    if (k.v_world.z() > 0.1 &&
+        std::abs(k.T_world_frame.rotationMatrix()(2, 0)) > std::sin(25 * kDeg))
+      break;
+  }
+  ASSERT_LT(n, lidar.scanCount(world.trajectory.duration())) << "no scan on the stairs";
+  const Scan scan = lidar.simulateScan(n);
+  ASSERT_GT(scan.points.size(), 15000u);
+  double worst = 0.0;
+  for (std::size_t i = 0; i < scan.points.size(); i += 41) {
+    const ScanPoint& p = scan.points[i];
+    const Pose T_world_lidar =
+        world.trajectory.frame(scan.stamp_ns * 1e-9 + p.time, spec.sensors.T_body_lidar)
+            .T_world_frame;
+    worst = std::max(worst, world.building.mesh.distanceTo(T_world_lidar * p.p.cast<double>()));
+  }
+  EXPECT_LT(worst, 1e-3);
 }
 
 TEST(SimLidar, RangeNoiseAndDropoutsFollowTheSpec) {
@@ -118,7 +148,8 @@ TEST(SimLidar, RangeNoiseAndDropoutsFollowTheSpec) {
   LidarNoise noise;
   noise.range_sigma = 0.015;
   noise.dropout = 0.05;
-  const LidarSimulator perfect(f.world.building.mesh, f.world.trajectory, f.spec.sensors, LidarNoise{}, 1);
+  const LidarSimulator perfect(f.world.building.mesh, f.world.trajectory, f.spec.sensors,
+                               LidarNoise{}, 1);
   const LidarSimulator noisy(f.world.building.mesh, f.world.trajectory, f.spec.sensors, noise, 1);
   const Scan a = perfect.simulateScan(10), b = noisy.simulateScan(10);  // standing still
   EXPECT_NEAR(1.0 - static_cast<double>(b.points.size()) / a.points.size(), 0.05, 0.01);

@@ -21,8 +21,18 @@ namespace {
 
 namespace fs = std::filesystem;
 
+/// A per-process scratch folder, removed when the test program exits.
+struct ScratchRoot {
+  fs::path path = fs::temp_directory_path() / ("storey_sim_test_" + std::to_string(::getpid()));
+  ~ScratchRoot() {
+    std::error_code ec;
+    fs::remove_all(path, ec);
+  }
+};
+
 fs::path scratch(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("storey_sim_test_" + std::to_string(::getpid())) / name;
+  static const ScratchRoot root;
+  const fs::path dir = root.path / name;
   fs::remove_all(dir);
   return dir;
 }
@@ -74,9 +84,12 @@ TEST(SimOutput, BagHasTheVelodyneDriverLayout) {
     EXPECT_FALSE(cloud->is_bigendian);
     ASSERT_EQ(cloud->fields.size(), 6u);
     const std::pair<const char*, std::pair<int, int>> expected[6] = {
-        {"x", {0, sensor_msgs::PointField::FLOAT32}},         {"y", {4, sensor_msgs::PointField::FLOAT32}},
-        {"z", {8, sensor_msgs::PointField::FLOAT32}},         {"intensity", {16, sensor_msgs::PointField::FLOAT32}},
-        {"ring", {20, sensor_msgs::PointField::UINT16}},      {"time", {24, sensor_msgs::PointField::FLOAT32}}};
+        {"x", {0, sensor_msgs::PointField::FLOAT32}},
+        {"y", {4, sensor_msgs::PointField::FLOAT32}},
+        {"z", {8, sensor_msgs::PointField::FLOAT32}},
+        {"intensity", {16, sensor_msgs::PointField::FLOAT32}},
+        {"ring", {20, sensor_msgs::PointField::UINT16}},
+        {"time", {24, sensor_msgs::PointField::FLOAT32}}};
     for (int i = 0; i < 6; ++i) {
       EXPECT_EQ(cloud->fields[i].name, expected[i].first);
       EXPECT_EQ(static_cast<int>(cloud->fields[i].offset), expected[i].second.first);
@@ -125,11 +138,13 @@ TEST(SimOutput, BagHasTheVelodyneDriverLayout) {
   // Ground truth and the other files.
   EXPECT_EQ(countLines(out / kLidarTruthFile), result.scans);
   EXPECT_EQ(countLines(out / kImuTruthFile), result.imu_samples);
-  for (const char* name : {kMeshFile, kStoreysFile, kCalibrationFile}) EXPECT_TRUE(fs::exists(out / name)) << name;
+  for (const char* name : {kMeshFile, kStoreysFile, kCalibrationFile})
+    EXPECT_TRUE(fs::exists(out / name)) << name;
   EXPECT_EQ(readAll(out / kMeshFile).rfind("ply\nformat binary_little_endian 1.0\n", 0), 0u);
   Config config;
   applyCalibrationFile(config, (out / kCalibrationFile).string());
-  EXPECT_TRUE(config.sensor.T_imu_lidar.isApprox(spec.sensors.T_body_imu.inverse() * spec.sensors.T_body_lidar, 1e-12, 1e-12));
+  EXPECT_TRUE(config.sensor.T_imu_lidar.isApprox(
+      spec.sensors.T_body_imu.inverse() * spec.sensors.T_body_lidar, 1e-12, 1e-12));
   EXPECT_DOUBLE_EQ(config.sensor.imu.rate_hz, 400.0);
   EXPECT_EQ(config.input.points_topic, "/velodyne_points");
   // No temporary folder is left next to the output.

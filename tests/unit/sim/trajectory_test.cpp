@@ -21,8 +21,9 @@ Eigen::Vector3d rotationLog(const Eigen::Matrix3d& R) {
 
 TEST(SimTrajectory, DerivativesMatchFiniteDifferences) {
   const Trajectory& traj = defaultWorld().trajectory;
-  const Pose T_body_lidar(Eigen::Quaterniond(Eigen::AngleAxisd(0.3, Eigen::Vector3d(1, 2, 3).normalized())),
-                          Eigen::Vector3d(0.25, -0.05, 0.12));
+  const Pose T_body_lidar(
+      Eigen::Quaterniond(Eigen::AngleAxisd(0.3, Eigen::Vector3d(1, 2, 3).normalized())),
+      Eigen::Vector3d(0.25, -0.05, 0.12));
   const double h = 1e-4;
   int checked = 0;
   for (double t = 1.0; t < traj.duration() - 1.0; t += 0.37) {
@@ -30,7 +31,8 @@ TEST(SimTrajectory, DerivativesMatchFiniteDifferences) {
     const FrameKinematics kp = traj.frame(t + h, T_body_lidar);
     const FrameKinematics km = traj.frame(t - h, T_body_lidar);
     const Eigen::Vector3d p = k.T_world_frame.translation();
-    const Eigen::Vector3d v_fd = (kp.T_world_frame.translation() - km.T_world_frame.translation()) / (2 * h);
+    const Eigen::Vector3d v_fd =
+        (kp.T_world_frame.translation() - km.T_world_frame.translation()) / (2 * h);
     const Eigen::Vector3d a_fd =
         (kp.T_world_frame.translation() - 2 * p + km.T_world_frame.translation()) / (h * h);
     EXPECT_LT((k.v_world - v_fd).norm(), 1e-6) << "t=" << t;
@@ -38,10 +40,14 @@ TEST(SimTrajectory, DerivativesMatchFiniteDifferences) {
     EXPECT_LT((k.a_world - (kp.v_world - km.v_world) / (2 * h)).norm(), 1e-5) << "t=" << t;
     // Angular rate in the frame: log(R(t-h)^T R(t+h)) / 2h.
     const Eigen::Matrix3d R = k.T_world_frame.rotationMatrix();
-    const Eigen::Vector3d w_fd =
-        rotationLog(km.T_world_frame.rotationMatrix().transpose() * kp.T_world_frame.rotationMatrix()) / (2 * h);
+    const Eigen::Vector3d w_fd = rotationLog(km.T_world_frame.rotationMatrix().transpose() *
+                                             kp.T_world_frame.rotationMatrix()) /
+                                 (2 * h);
     EXPECT_LT((k.omega_frame - w_fd).norm(), 1e-6) << "t=" << t;
-    EXPECT_LT((k.dR - (kp.T_world_frame.rotationMatrix() - km.T_world_frame.rotationMatrix()) / (2 * h)).norm(), 1e-6);
+    EXPECT_LT(
+        (k.dR - (kp.T_world_frame.rotationMatrix() - km.T_world_frame.rotationMatrix()) / (2 * h))
+            .norm(),
+        1e-6);
     EXPECT_LT((k.ddR - (kp.dR - km.dR) / (2 * h)).norm(), 1e-4);  // O(h^2) truncation
     EXPECT_LT((R.transpose() * k.dR + (R.transpose() * k.dR).transpose()).norm(), 1e-9);
     ++checked;
@@ -70,7 +76,8 @@ TEST(SimTrajectory, StandsStillThenReturnsExactlyToStart) {
 
 TEST(SimTrajectory, LidarStartsAtTheWorldOrigin) {
   const BuildingSpec spec = loadBuildingSpec("default");
-  const Pose T_world_lidar = defaultWorld().trajectory.frame(0.0, spec.sensors.T_body_lidar).T_world_frame;
+  const Pose T_world_lidar =
+      defaultWorld().trajectory.frame(0.0, spec.sensors.T_body_lidar).T_world_frame;
   EXPECT_LT(T_world_lidar.translation().norm(), 1e-12);
   // Level and facing +x at the start.
   EXPECT_LT(T_world_lidar.angle(), 1e-12);
