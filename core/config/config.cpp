@@ -55,6 +55,11 @@ void visitOdometry(V& v, OdometryConfig& c) {
   v.field("huber_width", c.huber_width);
   v.field("degenerate_translation_std", c.degenerate_translation_std);
   v.field("degenerate_rotation_std", c.degenerate_rotation_std);
+  v.field("prior_velocity_sigma", c.prior_velocity_sigma);
+  v.field("prior_gyro_bias_sigma", c.prior_gyro_bias_sigma);
+  v.field("prior_accel_bias_sigma", c.prior_accel_bias_sigma);
+  v.field("pose_sigma_translation", c.pose_sigma_translation);
+  v.field("pose_sigma_rotation", c.pose_sigma_rotation);
   v.field("max_scan_gap", c.max_scan_gap);
   v.section("features", [&](auto& f) {
     FeatureConfig& fc = c.features;
@@ -210,7 +215,8 @@ void Config::validate() const {
   require(o.window_size >= 2, "odometry.window_size", "must be >= 2");
   require(o.matching_rounds >= 1, "odometry.matching_rounds", "must be >= 1");
   require(o.max_iterations >= 1, "odometry.max_iterations", "must be >= 1");
-  require(o.neighbours >= 3, "odometry.neighbours", "must be >= 3");
+  require(o.neighbours >= 3 && o.neighbours <= VoxelMap::kMaxNeighbours, "odometry.neighbours",
+          "must be within [3, 16]");
   for (const auto& [key, value] :
        {std::pair<const char*, double>{"odometry.max_neighbour_distance", o.max_neighbour_distance},
         {"odometry.plane_fit_tolerance", o.plane_fit_tolerance},
@@ -221,6 +227,11 @@ void Config::validate() const {
         {"odometry.degenerate_translation_std", o.degenerate_translation_std},
         {"odometry.degenerate_rotation_std", o.degenerate_rotation_std},
         {"odometry.max_scan_gap", o.max_scan_gap},
+        {"odometry.prior_velocity_sigma", o.prior_velocity_sigma},
+        {"odometry.prior_gyro_bias_sigma", o.prior_gyro_bias_sigma},
+        {"odometry.prior_accel_bias_sigma", o.prior_accel_bias_sigma},
+        {"odometry.pose_sigma_translation", o.pose_sigma_translation},
+        {"odometry.pose_sigma_rotation", o.pose_sigma_rotation},
         {"odometry.local_map.voxel_size", o.local_map.voxel_size},
         {"odometry.local_map.max_range", o.local_map.max_range},
         {"odometry.imu_init.still_window", o.imu_init.still_window},

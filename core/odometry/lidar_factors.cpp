@@ -1,6 +1,7 @@
 #include "odometry/lidar_factors.h"
 
 #include <Eigen/Geometry>
+#include <cmath>
 
 namespace storey {
 namespace {
@@ -64,6 +65,63 @@ bool PointToLineFactor::Evaluate(double const* const* parameters, double* residu
   if (want_jacobian) {
     Eigen::Map<Eigen::Matrix<double, 3, 7, Eigen::RowMajor>> out(jacobians[0]);
     out = -weight_ * skew(u_world_) * J;
+  }
+  return true;
+}
+
+}  // namespace storey
+
+namespace storey {
+
+ScanResidualsFactor::ScanResidualsFactor(const MatchResult& matches,
+                                         const double* pose_for_weights, double huber_width) {
+  planes_.reserve(matches.planes.size());
+  lines_.reserve(matches.lines.size());
+  const auto huberWeight = [huber_width](double distance) {
+    const double a = std::abs(distance);
+    return a <= huber_width ? 1.0 : huber_width / a;
+  };
+  Eigen::Vector3d x_world;
+  for (const PlaneMatch& m : matches.planes) {
+    worldPointJacobian(pose_for_weights, m.y_imu, x_world, nullptr);
+    const double distance = m.n_world.dot(x_world) - m.d_world;
+    planes_.push_back({m.y_imu, m.n_world, m.d_world, std::sqrt(huberWeight(distance)) / m.sigma});
+  }
+  for (const LineMatch& m : matches.lines) {
+    worldPointJacobian(pose_for_weights, m.y_imu, x_world, nullptr);
+    const Eigen::Vector3d u = m.u_world.normalized();
+    const double distance = (x_world - m.a_world).cross(u).norm();
+    lines_.push_back({m.y_imu, m.a_world, u, std::sqrt(huberWeight(distance)) / m.sigma});
+  }
+  set_num_residuals(static_cast<int>(planes_.size() + 3 * lines_.size()));
+  mutable_parameter_block_sizes()->push_back(7);
+}
+
+bool ScanResidualsFactor::Evaluate(double const* const* parameters, double* residuals,
+                                   double** jacobians) const {
+  const double* pose = parameters[0];
+  const bool want_jacobian = jacobians != nullptr && jacobians[0] != nullptr;
+  Eigen::Vector3d x_world;
+  Eigen::Matrix<double, 3, 7> J;
+  std::size_t row = 0;
+  for (const Plane& p : planes_) {
+    worldPointJacobian(pose, p.y_imu, x_world, want_jacobian ? &J : nullptr);
+    residuals[row] = p.weight * (p.n_world.dot(x_world) - p.d_world);
+    if (want_jacobian) {
+      Eigen::Map<Eigen::Matrix<double, 1, 7>> out(jacobians[0] + 7 * row);
+      out = p.weight * p.n_world.transpose() * J;
+    }
+    ++row;
+  }
+  for (const Line& l : lines_) {
+    worldPointJacobian(pose, l.y_imu, x_world, want_jacobian ? &J : nullptr);
+    Eigen::Map<Eigen::Vector3d> r(residuals + row);
+    r = l.weight * (x_world - l.a_world).cross(l.u_world);
+    if (want_jacobian) {
+      Eigen::Map<Eigen::Matrix<double, 3, 7, Eigen::RowMajor>> out(jacobians[0] + 7 * row);
+      out = -l.weight * skew(l.u_world) * J;
+    }
+    row += 3;
   }
   return true;
 }

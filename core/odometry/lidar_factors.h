@@ -60,3 +60,41 @@ class PointToLineFactor : public ceres::SizedCostFunction<3, 7> {
 };
 
 }  // namespace storey
+
+#include <vector>
+
+#include "odometry/scan_matcher.h"
+
+namespace storey {
+
+/// All LiDAR residuals of one scan in one Ceres cost function (one residual
+/// block instead of thousands: Ceres' per-block overhead dominated the solve).
+/// Residuals are the point-to-plane and point-to-line ones above, each
+/// weighted by 1 / sigma of its match and by the square root of its Huber
+/// weight, min(1, huber_width / |distance|), computed from the distance at the
+/// pose given to the constructor (iteratively reweighted least squares; the
+/// odometry re-associates and reweighs at every matching round).
+class ScanResidualsFactor final : public ceres::CostFunction {
+ public:
+  ScanResidualsFactor(const MatchResult& matches, const double* pose_for_weights,
+                      double huber_width);
+  bool Evaluate(double const* const* parameters, double* residuals,
+                double** jacobians) const override;
+  /// Sum of squared whitened residuals at `pose` without robust weights.
+  int planeCount() const { return static_cast<int>(planes_.size()); }
+  int lineCount() const { return static_cast<int>(lines_.size()); }
+
+ private:
+  struct Plane {
+    Eigen::Vector3d y_imu, n_world;
+    double d_world, weight;
+  };
+  struct Line {
+    Eigen::Vector3d y_imu, a_world, u_world;
+    double weight;
+  };
+  std::vector<Plane> planes_;
+  std::vector<Line> lines_;
+};
+
+}  // namespace storey

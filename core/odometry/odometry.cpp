@@ -102,6 +102,21 @@ void LidarInertialOdometry::finish() {
   }
 }
 
+void LidarInertialOdometry::applyCorrection(const Pose& T_corrected_old) {
+  for (auto& frame : window_) {
+    ImuState state = frame->state();
+    state.T_world_imu = T_corrected_old * state.T_world_imu;
+    state.v_world_imu = T_corrected_old.rotation() * state.v_world_imu;
+    frame->blocks = ImuStateBlocks::fromState(state);
+    frame->motion_prior.mean.head<3>() = T_corrected_old.rotation() * frame->motion_prior.mean.head<3>();
+    Matrix9d M = Matrix9d::Identity();  // rotates the velocity part; orthogonal
+    M.topLeftCorner<3, 3>() = T_corrected_old.rotationMatrix();
+    frame->motion_prior.information = M * frame->motion_prior.information * M.transpose();
+  }
+  plane_map_.transform(T_corrected_old);
+  edge_map_.transform(T_corrected_old);
+}
+
 void LidarInertialOdometry::initialise() {
   const ImuInitResult init =
       initializeImuFromStill(imu_, config_.sensor.imu, config_.odometry.imu_init);
@@ -182,11 +197,19 @@ void LidarInertialOdometry::processScan(const Scan& scan) {
       previous = from_init.predict(initial_state_);
       previous.stamp_ns = frame->state_ns;
     }
-    if (!origin_set_) {  // world origin at the LiDAR's start position
+    if (!origin_set_) {
+      // World frame: gravity-aligned (from the IMU initialisation), origin at
+      // the LiDAR's start position, yaw such that the LiDAR's x axis points
+      // along world +x (whatever the IMU's mounting), unless it is vertical.
       const Pose& T_imu_lidar = config_.sensor.T_imu_lidar;
-      previous.T_world_imu =
-          Pose(previous.T_world_imu.rotation(),
-               -(previous.T_world_imu.rotation() * T_imu_lidar.translation()));
+      Eigen::Quaterniond q_world_imu = previous.T_world_imu.rotation();
+      const Eigen::Vector3d lidar_x_world = q_world_imu * (T_imu_lidar.rotation() * Eigen::Vector3d::UnitX());
+      if (lidar_x_world.head<2>().norm() > 0.1) {
+        const double yaw = std::atan2(lidar_x_world.y(), lidar_x_world.x());
+        q_world_imu = Eigen::AngleAxisd(-yaw, Eigen::Vector3d::UnitZ()) * q_world_imu;
+        previous.v_world_imu = Eigen::AngleAxisd(-yaw, Eigen::Vector3d::UnitZ()) * previous.v_world_imu;
+      }
+      previous.T_world_imu = Pose(q_world_imu, -(q_world_imu * T_imu_lidar.translation()));
       origin_set_ = true;
     }
     frame->blocks = ImuStateBlocks::fromState(previous);
@@ -214,7 +237,7 @@ void LidarInertialOdometry::processScan(const Scan& scan) {
   // 2. Deskew with the IMU-propagated motion.
   t = Clock::now();
   const ImuPoseTable table = ImuPoseTable::fromSamples(previous, imu_, table_end_ns, gravity);
-  frame->deskewed = getenv("NODESKEW") ? scan : deskewScan(scan, table, config_.sensor);
+  frame->deskewed = deskewScan(scan, table, config_.sensor);
   frame->stats.ms_deskew = msSince(t);
 
   // 3. Features.
@@ -237,7 +260,6 @@ void LidarInertialOdometry::processScan(const Scan& scan) {
 
 void LidarInertialOdometry::optimise(Frame& newest) {
   const OdometryConfig& cfg = config_.odometry;
-  const double weight = 1.0 / cfg.point_sigma;
   for (int round = 0; round < std::max(cfg.matching_rounds, 1); ++round) {
     auto t = Clock::now();
     newest.matches = matchFeatures(newest.planes_imu, newest.edges_imu,
@@ -261,18 +283,15 @@ void LidarInertialOdometry::optimise(Frame& newest) {
       problem.AddResidualBlock(new ImuFactor(*frame.from_previous), nullptr, previous.blocks.pose,
                                previous.blocks.motion, frame.blocks.pose, frame.blocks.motion);
     }
-    ceres::LossFunction* loss = new ceres::HuberLoss(cfg.huber_width * weight);
     for (std::size_t i = 1; i < window_.size(); ++i) {
       Frame& frame = *window_[i];
-      for (const PlaneMatch& m : frame.matches.planes)
-        problem.AddResidualBlock(new PointToPlaneFactor(m.y_imu, m.n_world, m.d_world, 1.0 / m.sigma),
-                                 loss, frame.blocks.pose);
-      for (const LineMatch& m : frame.matches.lines)
-        problem.AddResidualBlock(new PointToLineFactor(m.y_imu, m.a_world, m.u_world, 1.0 / m.sigma),
-                                 loss, frame.blocks.pose);
+      if (frame.matches.planes.empty() && frame.matches.lines.empty()) continue;
+      problem.AddResidualBlock(
+          new ScanResidualsFactor(frame.matches, frame.blocks.pose, cfg.huber_width), nullptr,
+          frame.blocks.pose);
     }
     ceres::Solver::Options options;
-    options.linear_solver_type = ceres::DENSE_NORMAL_CHOLESKY;
+    options.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
     options.max_num_iterations = std::max(cfg.max_iterations, 1);
     options.num_threads = 1;
     options.logging_type = ceres::SILENT;
@@ -280,13 +299,6 @@ void LidarInertialOdometry::optimise(Frame& newest) {
     ceres::Solver::Summary summary;
     ceres::Solve(options, &problem, &summary);
     newest.stats.solver_iterations += static_cast<int>(summary.iterations.size());
-    if (getenv("ODODEBUG")) {
-      const auto st = newest.blocks.toState(newest.state_ns);
-      fprintf(stderr, "scan %.2f round %d planes %zu lines %zu cost %g -> %g iters %zu p %.4f %.4f %.4f v %.4f %.4f %.4f\n",
-              nsToSeconds(newest.state_ns) - 1.7e9, round, newest.matches.planes.size(), newest.matches.lines.size(),
-              summary.initial_cost, summary.final_cost, summary.iterations.size(), st.T_world_imu.translation().x(),
-              st.T_world_imu.translation().y(), st.T_world_imu.translation().z(), st.v_world_imu.x(), st.v_world_imu.y(), st.v_world_imu.z());
-    }
     newest.stats.ms_optimisation += msSince(t);
   }
   newest.stats.plane_matches = static_cast<std::int64_t>(newest.matches.planes.size());

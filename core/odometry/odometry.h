@@ -78,6 +78,12 @@ class LidarInertialOdometry {
   void addScan(Scan scan);
   /// End of the log: processes what the IMU covers and flushes the window.
   void finish();
+  /// Moves the odometry into a corrected world frame: every state of the
+  /// window (poses, velocities) and the local map are mapped by
+  /// T_corrected_old (x_corrected = T_corrected_old * x_old), so the odometry
+  /// continues from the corrected state. Results emitted afterwards are in
+  /// the corrected frame. The back end calls this after a graph optimisation.
+  void applyCorrection(const Pose& T_corrected_old);
 
   const OdometryDrops& drops() const { return drops_; }
   bool initialised() const { return initialised_; }

@@ -17,8 +17,8 @@ struct OdometryConfig {
   int matching_rounds = 2;         ///< feature association rounds per scan [>= 1]
   int max_iterations = 4;          ///< Ceres iterations per round [>= 1]
   int neighbours = 5;              ///< map points used to fit a plane or a line [>= 3]
-  double max_neighbour_distance = 1.0;  ///< farthest map neighbour of a feature [m]
-  double plane_fit_tolerance = 0.1;     ///< every neighbour within this of its plane [m]
+  double max_neighbour_distance = 0.5;  ///< farthest map neighbour of a feature [m]
+  double plane_fit_tolerance = 0.05;    ///< every neighbour within this of its plane [m]
   double line_eigen_ratio = 3.0;        ///< a line's neighbours: largest eigenvalue > ratio x second [-]
   double max_point_distance = 1.0;      ///< matches farther than this from their plane/line
                                         ///< at the predicted pose are rejected [m]

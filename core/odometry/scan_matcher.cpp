@@ -22,16 +22,16 @@ MatchResult matchFeatures(const std::vector<Eigen::Vector3d>& planes_imu,
   MatchResult result;
   const auto reject = [&](MatchReject reason) { ++result.rejected[static_cast<std::size_t>(reason)]; };
   const float max_neighbour = static_cast<float>(config.max_neighbour_distance);
+  Eigen::Vector3f neighbours[VoxelMap::kMaxNeighbours];
   result.planes.reserve(planes_imu.size());
   for (const Eigen::Vector3d& y : planes_imu) {
     const Eigen::Vector3d x = T_world_imu * y;
-    const std::vector<Eigen::Vector3f> neighbours =
-        plane_map.nearest(x.cast<float>(), config.neighbours, max_neighbour);
-    if (static_cast<int>(neighbours.size()) < config.neighbours) {
+    const int found = plane_map.nearest(x.cast<float>(), config.neighbours, max_neighbour, neighbours);
+    if (found < config.neighbours) {
       reject(MatchReject::kTooFewNeighbours);
       continue;
     }
-    const PlaneFit fit = fitPlane(neighbours, config.plane_fit_tolerance);
+    const PlaneFit fit = fitPlane(neighbours, found, config.plane_fit_tolerance);
     if (!fit.valid) {
       reject(MatchReject::kNotPlanar);
       continue;
@@ -45,13 +45,12 @@ MatchResult matchFeatures(const std::vector<Eigen::Vector3d>& planes_imu,
   result.lines.reserve(edges_imu.size());
   for (const Eigen::Vector3d& y : edges_imu) {
     const Eigen::Vector3d x = T_world_imu * y;
-    const std::vector<Eigen::Vector3f> neighbours =
-        edge_map.nearest(x.cast<float>(), config.neighbours, max_neighbour);
-    if (static_cast<int>(neighbours.size()) < config.neighbours) {
+    const int found = edge_map.nearest(x.cast<float>(), config.neighbours, max_neighbour, neighbours);
+    if (found < config.neighbours) {
       reject(MatchReject::kTooFewNeighbours);
       continue;
     }
-    const LineFit fit = fitLine(neighbours, config.line_eigen_ratio);
+    const LineFit fit = fitLine(neighbours, found, config.line_eigen_ratio);
     if (!fit.valid) {
       reject(MatchReject::kNotALine);
       continue;

@@ -57,11 +57,27 @@ void VoxelMap::removeFar(const Eigen::Vector3d& sensor_world) {
   }
 }
 
-std::vector<Eigen::Vector3f> VoxelMap::nearest(const Eigen::Vector3f& query, int k,
-                                               float max_distance) const {
-  std::vector<std::pair<float, const Eigen::Vector3f*>> candidates;
-  candidates.reserve(64);
-  const float max_squared = max_distance * max_distance;
+void VoxelMap::transform(const Pose& T) {
+  std::vector<Eigen::Vector3f> points;
+  points.reserve(point_count_);
+  const Eigen::Matrix3f R = T.rotationMatrix().cast<float>();
+  const Eigen::Vector3f t = T.translation().cast<float>();
+  for (const auto& [key, voxel] : voxels_)
+    for (const Eigen::Vector3f& p : voxel) points.push_back(R * p + t);
+  voxels_.clear();
+  point_count_ = 0;
+  insert(points);
+}
+
+int VoxelMap::nearest(const Eigen::Vector3f& query, int k, float max_distance,
+                      Eigen::Vector3f* out) const {
+  k = std::clamp(k, 0, kMaxNeighbours);
+  if (k == 0) return 0;
+  // Insertion into a small sorted array: k is tiny, the candidates a few hundred.
+  float best_d2[kMaxNeighbours];
+  const Eigen::Vector3f* best[kMaxNeighbours];
+  int found = 0;
+  float worst = max_distance * max_distance;
   const Eigen::Vector3i c = cellOf(query);
   for (int dx = -1; dx <= 1; ++dx) {
     for (int dy = -1; dy <= 1; ++dy) {
@@ -70,44 +86,56 @@ std::vector<Eigen::Vector3f> VoxelMap::nearest(const Eigen::Vector3f& query, int
         if (it == voxels_.end()) continue;
         for (const Eigen::Vector3f& p : it->second) {
           const float d2 = (p - query).squaredNorm();
-          if (d2 <= max_squared) candidates.emplace_back(d2, &p);
+          if (d2 > worst) continue;
+          int i = found < k ? found++ : k - 1;
+          while (i > 0 && best_d2[i - 1] > d2) {
+            best_d2[i] = best_d2[i - 1];
+            best[i] = best[i - 1];
+            --i;
+          }
+          best_d2[i] = d2;
+          best[i] = &p;
+          if (found == k) worst = best_d2[k - 1];
         }
       }
     }
   }
-  const std::size_t count = std::min<std::size_t>(static_cast<std::size_t>(std::max(k, 0)), candidates.size());
-  std::partial_sort(candidates.begin(), candidates.begin() + count, candidates.end(),
-                    [](const auto& a, const auto& b) { return a.first < b.first; });
-  std::vector<Eigen::Vector3f> result;
-  result.reserve(count);
-  for (std::size_t i = 0; i < count; ++i) result.push_back(*candidates[i].second);
-  return result;
+  for (int i = 0; i < found; ++i) out[i] = *best[i];
+  return found;
+}
+
+std::vector<Eigen::Vector3f> VoxelMap::nearest(const Eigen::Vector3f& query, int k,
+                                               float max_distance) const {
+  Eigen::Vector3f buffer[kMaxNeighbours];
+  const int found = nearest(query, k, max_distance, buffer);
+  return std::vector<Eigen::Vector3f>(buffer, buffer + found);
 }
 
 namespace {
 
-void meanAndCovariance(const std::vector<Eigen::Vector3f>& points, Eigen::Vector3d& mean,
+void meanAndCovariance(const Eigen::Vector3f* points, int count, Eigen::Vector3d& mean,
                        Eigen::Matrix3d& covariance) {
   mean.setZero();
-  for (const auto& p : points) mean += p.cast<double>();
-  mean /= static_cast<double>(points.size());
+  for (int i = 0; i < count; ++i) mean += points[i].cast<double>();
+  mean /= static_cast<double>(count);
   covariance.setZero();
-  for (const auto& p : points) {
-    const Eigen::Vector3d d = p.cast<double>() - mean;
+  for (int i = 0; i < count; ++i) {
+    const Eigen::Vector3d d = points[i].cast<double>() - mean;
     covariance += d * d.transpose();
   }
-  covariance /= static_cast<double>(points.size());
+  covariance /= static_cast<double>(count);
 }
 
 }  // namespace
 
-PlaneFit fitPlane(const std::vector<Eigen::Vector3f>& points, double max_distance) {
+PlaneFit fitPlane(const Eigen::Vector3f* points, int count, double max_distance) {
   PlaneFit fit;
-  if (points.size() < 3) return fit;
+  if (count < 3) return fit;
   Eigen::Vector3d mean;
   Eigen::Matrix3d covariance;
-  meanAndCovariance(points, mean, covariance);
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(covariance);
+  meanAndCovariance(points, count, mean, covariance);
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver;
+  solver.computeDirect(covariance);
   // Eigenvalues ascending: the smallest one's vector is the normal; the
   // points must also spread in two directions: a neighbourhood taken from one
   // ring of a sparse LiDAR is nearly a line and leaves the normal undefined.
@@ -116,19 +144,20 @@ PlaneFit fitPlane(const std::vector<Eigen::Vector3f>& points, double max_distanc
   fit.normal = solver.eigenvectors().col(0).normalized();
   fit.d = fit.normal.dot(mean);
   fit.thickness = std::sqrt(std::max(solver.eigenvalues()(0), 0.0));
-  for (const auto& p : points)
-    if (std::abs(fit.normal.dot(p.cast<double>()) - fit.d) > max_distance) return fit;
+  for (int i = 0; i < count; ++i)
+    if (std::abs(fit.normal.dot(points[i].cast<double>()) - fit.d) > max_distance) return fit;
   fit.valid = true;
   return fit;
 }
 
-LineFit fitLine(const std::vector<Eigen::Vector3f>& points, double min_ratio) {
+LineFit fitLine(const Eigen::Vector3f* points, int count, double min_ratio) {
   LineFit fit;
-  if (points.size() < 2) return fit;
+  if (count < 2) return fit;
   Eigen::Vector3d mean;
   Eigen::Matrix3d covariance;
-  meanAndCovariance(points, mean, covariance);
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(covariance);
+  meanAndCovariance(points, count, mean, covariance);
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver;
+  solver.computeDirect(covariance);
   fit.point = mean;
   fit.direction = solver.eigenvectors().col(2).normalized();
   fit.thickness = std::sqrt(std::max(solver.eigenvalues()(0) + solver.eigenvalues()(1), 0.0));

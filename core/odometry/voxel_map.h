@@ -10,11 +10,13 @@
 #include <unordered_map>
 #include <vector>
 
+#include "types/pose.h"
+
 namespace storey {
 
 struct VoxelMapConfig {
-  double voxel_size = 1.0;          ///< voxel edge [m]
-  int max_points_per_voxel = 30;    ///< points kept per voxel [>= 1]
+  double voxel_size = 0.5;          ///< voxel edge [m]
+  int max_points_per_voxel = 20;    ///< points kept per voxel [>= 1]
   double min_point_spacing = 0.1;   ///< a new point closer than this to a kept one is skipped [m]
   double max_range = 60.0;          ///< voxels farther than this from the sensor are dropped [m]
 };
@@ -32,6 +34,13 @@ class VoxelMap {
   /// first. Searches the 27 voxels around the query, so max_distance should
   /// not exceed the voxel size.
   std::vector<Eigen::Vector3f> nearest(const Eigen::Vector3f& query, int k, float max_distance) const;
+  /// Same without allocation: writes up to min(k, kMaxNeighbours) points to
+  /// `out`, nearest first, and returns how many.
+  static constexpr int kMaxNeighbours = 16;
+  int nearest(const Eigen::Vector3f& query, int k, float max_distance, Eigen::Vector3f* out) const;
+
+  /// Maps every point by T (x -> T * x) and rebuilds the hash.
+  void transform(const Pose& T);
 
   std::size_t pointCount() const { return point_count_; }
   std::size_t voxelCount() const { return voxels_.size(); }
@@ -58,7 +67,10 @@ struct PlaneFit {
   double thickness = 0.0;  ///< RMS distance of the points to the plane [m]
   bool valid = false;
 };
-PlaneFit fitPlane(const std::vector<Eigen::Vector3f>& points, double max_distance);
+PlaneFit fitPlane(const Eigen::Vector3f* points, int count, double max_distance);
+inline PlaneFit fitPlane(const std::vector<Eigen::Vector3f>& points, double max_distance) {
+  return fitPlane(points.data(), static_cast<int>(points.size()), max_distance);
+}
 
 /// Line through `point` along unit `direction` fitted by PCA; `valid` only when
 /// the points are clearly elongated (largest eigenvalue > `min_ratio` x the second).
@@ -68,6 +80,9 @@ struct LineFit {
   double thickness = 0.0;  ///< RMS distance of the points to the line [m]
   bool valid = false;
 };
-LineFit fitLine(const std::vector<Eigen::Vector3f>& points, double min_ratio);
+LineFit fitLine(const Eigen::Vector3f* points, int count, double min_ratio);
+inline LineFit fitLine(const std::vector<Eigen::Vector3f>& points, double min_ratio) {
+  return fitLine(points.data(), static_cast<int>(points.size()), min_ratio);
+}
 
 }  // namespace storey

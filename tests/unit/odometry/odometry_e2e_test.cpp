@@ -1,0 +1,113 @@
+// End-to-end runs of the LiDAR-inertial odometry on simulated logs with
+// ground truth: the `tiny` preset as is, and with the IMU mounted upside down
+// and turned, at 200 Hz.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+
+#include "common/error.h"
+#include "config/calibration.h"
+#include "eval/association.h"
+#include "eval/ate.h"
+#include "odometry/odometry.h"
+#include "pipeline/pipeline.h"
+#include "sim/simulator.h"
+#include "support/temp_dir.h"
+#include "trajectory/drift.h"
+
+namespace storey {
+namespace {
+
+struct RunErrors {
+  double ate_rmse = 0.0, ate_max = 0.0, rotation_max = 0.0;
+  double end_drift = 0.0, max_step_error = 0.0;
+  std::size_t scans = 0, gt_scans = 0;
+  nlohmann::json report;
+};
+
+RunErrors simulateAndRun(const sim::BuildingSpec& spec) {
+  test::TempDir dir;
+  const std::string sim_dir = dir.file("sim");
+  sim::SimulationOptions options;
+  options.compress = false;
+  sim::simulate(spec, options, sim_dir);
+  const Config config = loadRunConfig("", sim_dir + "/" + sim::kCalibrationFile);
+  const PipelineResult result =
+      runPipeline(sim_dir + "/" + sim::kBagFile, config, dir.file("out"));
+  const Trajectory gt = readTum(sim_dir + "/" + sim::kLidarTruthFile);
+
+  RunErrors errors;
+  errors.scans = result.odometry.size();
+  errors.gt_scans = gt.size();
+  errors.report = nlohmann::json::parse(result.report_json);
+  const eval::AssociatedPoses poses = eval::associate(gt, result.odometry);
+  const eval::AteResult ate = eval::absoluteTrajectoryError(poses, eval::Alignment::kNone);
+  errors.ate_rmse = ate.translation.rmse;
+  errors.ate_max = ate.translation.max;
+  errors.rotation_max = ate.rotation.max;
+  errors.end_drift = endPointDrift(result.odometry).dxyz;
+  // Jumps: the estimated motion between consecutive scans against the true one.
+  for (std::size_t i = 1; i < poses.matched(); ++i) {
+    const Eigen::Vector3d est_step =
+        poses.T_world_est[i].translation() - poses.T_world_est[i - 1].translation();
+    const Eigen::Vector3d gt_step =
+        poses.T_world_gt[i].translation() - poses.T_world_gt[i - 1].translation();
+    errors.max_step_error = std::max(errors.max_step_error, (est_step - gt_step).norm());
+  }
+  return errors;
+}
+
+void expectAccurate(const RunErrors& e) {
+  EXPECT_GE(e.scans + 5, e.gt_scans) << "almost every scan gets a pose";
+  EXPECT_LT(e.ate_rmse, 0.10) << "ATE RMSE [m]";
+  EXPECT_LT(e.ate_max, 0.25) << "largest position error [m]";
+  EXPECT_LT(e.rotation_max, 3.0 * M_PI / 180.0) << "largest rotation error [rad]";
+  EXPECT_LT(e.end_drift, 0.10) << "end-point drift [m] (the walk returns to its start)";
+  EXPECT_LT(e.max_step_error, 0.05) << "largest jump between consecutive scans [m]";
+}
+
+TEST(OdometryEndToEnd, TinyPresetStaysOnTheTruth) {
+  const RunErrors e = simulateAndRun(sim::loadBuildingSpec("tiny"));
+  expectAccurate(e);
+  // The report carries timings and counts.
+  const auto& odometry = e.report.at("odometry");
+  EXPECT_GT(odometry.at("timing_ms").at("total_per_scan").at("median").get<double>(), 0.0);
+  EXPECT_GT(odometry.at("matches_per_scan").at("point_to_plane").at("median").get<double>(), 100.0);
+  EXPECT_TRUE(odometry.at("rejected_matches").is_object());
+  EXPECT_TRUE(odometry.contains("degenerate_scans"));
+  RecordProperty("ate_rmse_m", std::to_string(e.ate_rmse));
+}
+
+TEST(OdometryEndToEnd, ImuUpsideDownTurnedAt200Hz) {
+  sim::BuildingSpec spec = sim::loadBuildingSpec("tiny");
+  spec.sensors.imu.rate = 200.0;
+  const Eigen::Quaterniond upside_down_turned =
+      Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitZ()) *
+      Eigen::AngleAxisd(M_PI, Eigen::Vector3d::UnitX());
+  spec.sensors.T_body_imu = Pose(upside_down_turned, Eigen::Vector3d(0.05, -0.03, 0.02));
+  spec.validate();
+  expectAccurate(simulateAndRun(spec));
+}
+
+TEST(OdometryEndToEnd, MovingStartIsAClearError) {
+  Config config;
+  LidarInertialOdometry odometry(config, nullptr);
+  for (int i = 0; i < 800; ++i) {  // 2 s of a sensor spinning at 1 rad/s
+    ImuSample s;
+    s.stamp_ns = 1'000'000'000LL + i * 2'500'000LL;
+    s.gyro = Eigen::Vector3d(0.0, 0.0, 1.0);
+    s.accel = Eigen::Vector3d(0.0, 0.0, 9.81);
+    try {
+      odometry.addImu(s);
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find("not still"), std::string::npos) << e.what();
+      return;
+    }
+  }
+  FAIL() << "a log that does not start still must be rejected";
+}
+
+}  // namespace
+}  // namespace storey
