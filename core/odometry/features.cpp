@@ -34,10 +34,12 @@ std::vector<std::vector<std::uint32_t>> groupByRing(const Scan& scan) {
   for (const ScanPoint& p : scan.points) max_ring = std::max(max_ring, p.ring);
   std::vector<std::vector<std::uint32_t>> rings(scan.points.empty() ? 0 : max_ring + 1u);
   for (std::uint32_t i = 0; i < scan.points.size(); ++i) rings[scan.points[i].ring].push_back(i);
-  for (auto& ring : rings) {
-    std::stable_sort(ring.begin(), ring.end(), [&](std::uint32_t a, std::uint32_t b) {
-      return scan.points[a].time < scan.points[b].time;
-    });
+  const auto earlier = [&](std::uint32_t a, std::uint32_t b) {
+    return scan.points[a].time < scan.points[b].time;
+  };
+  for (auto& ring : rings) {  // drivers write points in firing order: usually sorted already
+    if (!std::is_sorted(ring.begin(), ring.end(), earlier))
+      std::stable_sort(ring.begin(), ring.end(), earlier);
   }
   return rings;
 }

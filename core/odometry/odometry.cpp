@@ -338,9 +338,13 @@ void LidarInertialOdometry::slide() {
     const Pose T_world_imu = oldest.state().T_world_imu;
     plane_map_.insert(toWorld(oldest.planes_imu, T_world_imu));
     edge_map_.insert(toWorld(oldest.edges_imu, T_world_imu));
+    // Dropping far voxels walks the whole map: once per metre travelled is enough.
     const Eigen::Vector3d sensor_world = T_world_imu.translation();
-    plane_map_.removeFar(sensor_world);
-    edge_map_.removeFar(sensor_world);
+    if ((sensor_world - last_map_trim_position_).norm() > 1.0) {
+      plane_map_.removeFar(sensor_world);
+      edge_map_.removeFar(sensor_world);
+      last_map_trim_position_ = sensor_world;
+    }
     oldest.in_map = true;
   }
   if (window_.size() == 1) return;  // the first frame stays as the window's fixed anchor

@@ -110,6 +110,7 @@ class LidarInertialOdometry {
   std::deque<std::unique_ptr<Frame>> window_;
   VoxelMap plane_map_;
   VoxelMap edge_map_;
+  Eigen::Vector3d last_map_trim_position_ = Eigen::Vector3d::Zero();
   OdometryDrops drops_;
 };
 
