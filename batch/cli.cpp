@@ -20,6 +20,12 @@ void addCommonOptions(CLI::App& cmd, storey::cli::CommonOptions& common) {
                  "docs/formats.md");
   cmd.add_option("--points-topic", common.points_topic, "point cloud topic (default: auto-detect)");
   cmd.add_option("--imu-topic", common.imu_topic, "IMU topic (default: auto-detect)");
+  cmd.add_option("--imu-csv", common.imu_csv,
+                 "IMU samples (CSV, docs/formats.md) for a Velodyne pcap or a PCD folder");
+  cmd.add_option("--imu-time-offset", common.imu_csv_time_offset,
+                 "seconds added to the IMU CSV stamps to put them on the LiDAR's clock");
+  cmd.add_option("--velodyne-calibration", common.velodyne_calibration,
+                 "VeloView calibration XML for a Velodyne pcap (default: the model's datasheet table)");
 }
 
 }  // namespace
@@ -36,7 +42,8 @@ int main(int argc, char** argv) {
   RunOptions run;
   auto* run_cmd = app.add_subcommand(
       "run", "map a log (ROS1 bag); without LOG the built-in simulated building is mapped");
-  run_cmd->add_option("LOG", run.log_path, "input log (ROS1 bag)");
+  run_cmd->add_option("LOG", run.log_path,
+                      "input log: ROS1 bag, Velodyne pcap (+ --imu-csv) or PCD folder (+ --imu-csv)");
   run_cmd->add_option("-o,--out", run.out_dir, "output folder")->capture_default_str();
   run_cmd->add_flag("--no-srp", run.no_srp, "switch the SRP back end off (odometry only)");
   run_cmd->add_option("--preset", run.preset,

@@ -85,27 +85,45 @@ void printCloudTopic(const TopicSummary& t, std::ostream& out) {
 
 int runInfo(const InfoOptions& options) {
   const Config config = configFromOptions(options.common);
-  const LogSummary summary = summarizeLog(options.log_path, config.input);
+  const LogSummary summary = summarizeLog(options.log_path, config);
   std::ostream& out = std::cout;
+  const bool bag = summary.compression.size() > 0;
 
-  out << "Log " << summary.path << '\n'
-      << "  format       " << summary.format << ", " << bytesText(summary.size_bytes) << ", "
-      << summary.chunks << " chunks (compression: " << summary.compression << ")\n"
-      << "  messages     " << summary.messages << '\n';
+  out << "Log " << summary.path << '\n' << "  format       " << summary.format << ", "
+      << bytesText(summary.size_bytes);
+  if (bag) out << ", " << summary.chunks << " chunks (compression: " << summary.compression << ")";
+  out << "\n  messages     " << summary.messages << '\n';
   if (summary.messages > 0) {
-    out << "  record time  " << stampText(summary.start_ns) << " .. " << stampText(summary.end_ns)
-        << " (" << fixed(static_cast<double>(summary.end_ns - summary.start_ns) * 1e-9, 3)
-        << " s)\n";
+    out << (bag ? "  record time  " : "  time         ") << stampText(summary.start_ns) << " .. "
+        << stampText(summary.end_ns) << " ("
+        << fixed(static_cast<double>(summary.end_ns - summary.start_ns) * 1e-9, 3) << " s)\n";
   }
-  out << "\nTopics\n";
+  for (const auto& [name, value] : summary.properties) {
+    out << "  " << name << std::string(name.size() < 13 ? 13 - name.size() : 1, ' ') << value << '\n';
+  }
+  out << (bag ? "\nTopics\n" : "\nStreams\n");
   printTopics(summary, out);
+  if (!bag) {
+    for (const auto& t : summary.topics) {
+      if (t.type == "scan" && t.count > 0) {
+        out << "  " << t.name << ": points per scan min " << t.points_min << ", median "
+            << t.points_median << ", max " << t.points_max << '\n';
+      }
+    }
+  }
+  if (!summary.dropped.empty()) {
+    out << "\nSkipped or repaired (reason: count)\n";
+    Table table({"reason", "count"}, {false, true});
+    for (const auto& [reason, count] : summary.dropped) table.add({reason, std::to_string(count)});
+    table.print(out, "  ");
+  }
   for (const auto& t : summary.topics) {
     if (!t.fields.empty() || t.type == "sensor_msgs/PointCloud2") printCloudTopic(t, out);
   }
   out << '\n';
   if (summary.input_problem.empty()) {
-    out << "Storey reads point clouds from " << summary.points_topic << " and IMU from "
-        << summary.imu_topic << '\n';
+    out << "Storey reads " << (bag ? "point clouds from " : "") << summary.points_topic
+        << " and IMU from " << summary.imu_topic << '\n';
   } else {
     out << "Storey cannot run on this log as it is: " << summary.input_problem << '\n';
   }

@@ -14,6 +14,9 @@ struct CommonOptions {
   std::string calibration_path;  ///< --calibration; empty = none
   std::string points_topic;      ///< --points-topic override
   std::string imu_topic;         ///< --imu-topic override
+  std::string imu_csv;           ///< --imu-csv: IMU CSV for a pcap or PCD folder (input.imu_csv)
+  std::optional<double> imu_csv_time_offset;  ///< --imu-time-offset: added to the CSV stamps [s]
+  std::string velodyne_calibration;  ///< --velodyne-calibration: VeloView XML (input.velodyne_calibration)
 };
 
 struct RunOptions {

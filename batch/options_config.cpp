@@ -8,6 +8,11 @@ Config configFromOptions(const CommonOptions& options) {
   Config config = loadRunConfig(options.config_path, options.calibration_path);
   if (!options.points_topic.empty()) config.input.points_topic = options.points_topic;
   if (!options.imu_topic.empty()) config.input.imu_topic = options.imu_topic;
+  if (!options.imu_csv.empty()) config.input.imu_csv = options.imu_csv;
+  if (options.imu_csv_time_offset) config.input.imu_csv_time_offset = *options.imu_csv_time_offset;
+  if (!options.velodyne_calibration.empty()) {
+    config.input.velodyne_calibration = options.velodyne_calibration;
+  }
   return config;
 }
 

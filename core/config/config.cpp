@@ -6,6 +6,7 @@
 #include "common/error.h"
 #include "config/sensor_yaml.h"
 #include "config/yaml_section.h"
+#include "storeys/storey_segmentation.h"
 
 namespace storey {
 
@@ -39,6 +40,13 @@ void visitInput(V& v, InputConfig& c) {
   v.field("imu_topic", c.imu_topic);
   v.field("min_range", c.min_range);
   v.field("max_range", c.max_range);
+  v.field("imu_csv", c.imu_csv);
+  v.field("imu_csv_time_offset", c.imu_csv_time_offset);
+  v.field("velodyne_model", c.velodyne_model);
+  v.field("velodyne_calibration", c.velodyne_calibration);
+  v.field("pcap_clock", c.pcap_clock);
+  v.field("pcap_data_port", c.pcap_data_port);
+  v.field("pcap_position_port", c.pcap_position_port);
 }
 
 template <typename V>
@@ -99,6 +107,85 @@ void visitOdometry(V& v, OdometryConfig& c) {
 template <typename V>
 void visitBackend(V& v, BackendConfig& c) {
   v.field("srp", c.srp);
+  v.section("keyframes", [&](auto& k) {
+    k.field("distance", c.keyframes.distance);
+    k.field("pitch_roll_deg", c.keyframes.pitch_roll_deg);
+    k.field("max_interval", c.keyframes.max_interval);
+  });
+  v.section("extraction", [&](auto& e) {
+    SrpExtractionConfig& x = c.extraction;
+    e.field("min_points", x.min_points);
+    e.field("max_srps", x.max_srps);
+    e.field("explained_fraction", x.explained_fraction);
+    e.field("max_detected_planes", x.max_detected_planes);
+    e.field("orthogonal_tolerance_deg", x.orthogonal_tolerance_deg);
+    e.field("ransac_distance", x.ransac_distance);
+    e.field("ransac_iterations", x.ransac_iterations);
+    e.field("voxel_size", x.voxel_size);
+    e.field("ransac_max_points", x.ransac_max_points);
+    e.field("min_range", x.min_range);
+    e.field("max_range", x.max_range);
+    e.field("min_extent", x.min_extent);
+    e.field("point_sigma", x.point_sigma);
+    e.field("max_effective_points", x.max_effective_points);
+  });
+  v.section("association", [&](auto& a) {
+    AssociationConfig& x = c.association;
+    a.field("angle_gate_deg", x.angle_gate_deg);
+    a.field("distance_gate", x.distance_gate);
+    a.field("mahalanobis_gate", x.mahalanobis_gate);
+    a.field("pose_sigma_rotation", x.pose_sigma_rotation);
+    a.field("pose_sigma_translation", x.pose_sigma_translation);
+    a.field("plane_sigma_rotation", x.plane_sigma_rotation);
+    a.field("plane_sigma_distance", x.plane_sigma_distance);
+    a.field("ambiguity_margin", x.ambiguity_margin);
+    a.field("new_plane_separation", x.new_plane_separation);
+  });
+  v.section("graph", [&](auto& g) {
+    GraphConfig& x = c.graph;
+    g.field("odometry_sigma_translation", x.odometry_sigma_translation);
+    g.field("odometry_sigma_translation_per_m", x.odometry_sigma_translation_per_m);
+    g.field("odometry_sigma_rotation", x.odometry_sigma_rotation);
+    g.field("odometry_sigma_rotation_per_m", x.odometry_sigma_rotation_per_m);
+    g.field("plane_sigma_rotation", x.plane_sigma_rotation);
+    g.field("plane_sigma_distance", x.plane_sigma_distance);
+    g.field("plane_loss_width", x.plane_loss_width);
+    g.field("level_prior_sigma", x.level_prior_sigma);
+    g.field("level_tolerance_deg", x.level_tolerance_deg);
+    g.field("first_tilt_sigma", x.first_tilt_sigma);
+    g.field("max_iterations", x.max_iterations);
+    g.field("window_keyframes", x.window_keyframes);
+    g.field("full_every", x.full_every);
+    g.field("final_iterations", x.final_iterations);
+    g.field("outlier_chi2", x.outlier_chi2);
+  });
+}
+
+template <typename V>
+void visitMap(V& v, MapConfig& c) {
+  v.field("voxel_size", c.voxel_size);
+  v.field("max_range", c.max_range);
+  v.field("spill_to_disk", c.spill_to_disk);
+}
+
+template <typename V>
+void visitStoreys(V& v, StoreysConfig& c) {
+  v.field("voxel_size", c.voxel_size);
+  v.field("normal_neighbours", c.normal_neighbours);
+  v.field("plane_distance", c.plane_distance);
+  v.field("plane_angle_deg", c.plane_angle_deg);
+  v.field("min_region_area", c.min_region_area);
+  v.field("horizontal_angle_deg", c.horizontal_angle_deg);
+  v.field("slab_tolerance", c.slab_tolerance);
+  v.field("min_floor_area", c.min_floor_area);
+  v.field("min_storey_height", c.min_storey_height);
+  v.field("floor_tolerance", c.floor_tolerance);
+  v.field("min_clear_height", c.min_clear_height);
+  v.field("max_clear_height", c.max_clear_height);
+  v.field("stairs_cell_size", c.stairs_cell_size);
+  v.field("stairs_min_rise", c.stairs_min_rise);
+  v.field("stairs_trajectory_distance", c.stairs_trajectory_distance);
+  v.field("footprint_alpha", c.footprint_alpha);
 }
 
 struct YamlReader {
@@ -158,6 +245,8 @@ void applyConfigYaml(Config& config, const std::string& yaml_text, const std::st
   readSection(top, "input", [&](auto& v) { visitInput(v, result.input); });
   readSection(top, "odometry", [&](auto& v) { visitOdometry(v, result.odometry); });
   readSection(top, "backend", [&](auto& v) { visitBackend(v, result.backend); });
+  readSection(top, "map", [&](auto& v) { visitMap(v, result.map); });
+  readSection(top, "storeys", [&](auto& v) { visitStoreys(v, result.storeys); });
   top.finish();
   try {
     result.validate();
@@ -186,6 +275,8 @@ std::string configToYaml(const Config& config) {
   writer.section("input", [&](auto& v) { visitInput(v, copy.input); });
   writer.section("odometry", [&](auto& v) { visitOdometry(v, copy.odometry); });
   writer.section("backend", [&](auto& v) { visitBackend(v, copy.backend); });
+  writer.section("map", [&](auto& v) { visitMap(v, copy.map); });
+  writer.section("storeys", [&](auto& v) { visitStoreys(v, copy.storeys); });
   out << YAML::EndMap;
   return std::string(out.c_str()) + "\n";
 }
@@ -208,6 +299,15 @@ void Config::validate() const {
   require(input.min_range >= 0.0, "input.min_range", "must be >= 0");
   require(input.max_range > input.min_range, "input.max_range",
           "must be larger than 'input.min_range'");
+  require(input.velodyne_model == "auto" || input.velodyne_model == "VLP-16" ||
+              input.velodyne_model == "HDL-32E",
+          "input.velodyne_model", "must be auto, VLP-16 or HDL-32E");
+  require(input.pcap_clock == "sensor" || input.pcap_clock == "capture", "input.pcap_clock",
+          "must be sensor or capture");
+  require(input.pcap_data_port >= 0 && input.pcap_data_port <= 65535, "input.pcap_data_port",
+          "must be a UDP port (0 = any)");
+  require(input.pcap_position_port >= 0 && input.pcap_position_port <= 65535,
+          "input.pcap_position_port", "must be a UDP port (0 = any)");
   require(std::abs(sensor.time_offset_lidar_to_imu) <= 1.0, "sensor.time_offset_lidar_to_imu",
           "must be within [-1, 1] s");
   require(sensor.imu.rate_hz <= 10000.0, "sensor.imu.rate_hz", "must be <= 10000");
@@ -262,6 +362,9 @@ void Config::validate() const {
   } catch (const Error& e) {
     throw Error(std::string("in section 'odometry.preintegration': ") + e.what());
   }
+  require(map.voxel_size > 0.0, "map.voxel_size", "must be positive");
+  require(map.max_range > 0.0, "map.max_range", "must be positive");
+  validateStoreysConfig(storeys);
 }
 
 }  // namespace storey

@@ -4,7 +4,10 @@
 /// (resources/config/default.yaml), the CLI and the plugin only fill these.
 #include <string>
 
+#include "backend/backend_config.h"
+#include "map/map_config.h"
 #include "odometry/odometry_config.h"
+#include "storeys/storeys_config.h"
 #include "types/pose.h"
 
 namespace storey {
@@ -39,11 +42,23 @@ struct InputConfig {
   std::string imu_topic;     ///< Imu topic; empty = auto-detect
   double min_range = 0.3;    ///< points closer than this are dropped [m] (robot body, sensor head)
   double max_range = 120.0;  ///< points farther than this are dropped [m]
+  // Velodyne pcap, PCD folder and IMU CSV inputs (docs/formats.md).
+  std::string imu_csv;                ///< IMU CSV file; empty = none (PCD folder: imu.csv inside it)
+  double imu_csv_time_offset = 0.0;   ///< added to the CSV's stamps to put them on the LiDAR clock [s]
+  std::string velodyne_model = "auto";  ///< pcap: "auto" (from the packets), "VLP-16" or "HDL-32E"
+  std::string velodyne_calibration;   ///< pcap: VeloView calibration XML; empty = the manual's table
+  std::string pcap_clock = "sensor";  ///< pcap: "sensor" (packet timestamps) or "capture" (record times)
+  int pcap_data_port = 2368;          ///< pcap: UDP port of data packets; 0 = any port
+  int pcap_position_port = 8308;      ///< pcap: UDP port of position (IMU) packets; 0 = any port
 };
 
-/// The back end (SRP constraints, keyframe graph).
+/// The back end (SRP constraints, keyframe graph; backend/backend_config.h).
 struct BackendConfig {
   bool srp = true;  ///< SRP back end on; off (`--no-srp`): trajectory = odometry
+  KeyframeConfig keyframes;
+  SrpExtractionConfig extraction;
+  AssociationConfig association;
+  GraphConfig graph;
 };
 
 struct Config {
@@ -51,6 +66,8 @@ struct Config {
   InputConfig input;
   OdometryConfig odometry;
   BackendConfig backend;
+  MapConfig map;          ///< map assembly (map/map_config.h)
+  StoreysConfig storeys;  ///< storey segmentation (storeys/storeys_config.h)
 
   /// Checks value ranges; throws storey::Error naming the key at fault.
   void validate() const;

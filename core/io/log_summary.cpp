@@ -1,13 +1,20 @@
 #include "io/log_summary.h"
 
 #include <algorithm>
+#include <cstdio>
+#include <filesystem>
 #include <limits>
 #include <map>
 
 #include "common/error.h"
 #include "common/time.h"
+#include "io/imu_csv.h"
 #include "io/log_format.h"
+#include "io/pcd_file.h"
+#include "io/pcd_folder_reader.h"
 #include "io/rosbag_file.h"
+#include "io/velodyne/pcap_file.h"
+#include "io/velodyne/velodyne_pcap_reader.h"
 #include "io/topic_selection.h"
 
 namespace storey {
@@ -58,6 +65,134 @@ std::string compressionOf(const RosbagStructure& structure) {
   return text.empty() ? "none" : text;
 }
 
+std::string fixed(double value, int decimals) {
+  char text[64];
+  std::snprintf(text, sizeof(text), "%.*f", decimals, value);
+  return text;
+}
+
+std::string hexByte(std::uint8_t value) {
+  char text[8];
+  std::snprintf(text, sizeof(text), "0x%02X", value);
+  return text;
+}
+
+/// Reads every message of `reader` into a scan stream and an IMU stream.
+void summarizeStreams(LogReader& reader, const std::string& scan_name, const std::string& imu_name,
+                      LogSummary& out, const ProgressFn& progress) {
+  TopicAccumulator scans, imu;
+  scans.summary.name = scan_name;
+  scans.summary.type = "scan";
+  scans.summary.header_stamps = true;
+  imu.summary.name = imu_name;
+  imu.summary.type = "imu";
+  imu.summary.header_stamps = true;
+  LogMessage message;
+  while (reader.next(message)) {
+    ++out.messages;
+    if (const auto* scan = std::get_if<Scan>(&message)) {
+      ++scans.summary.count;
+      scans.addStamp(scan->stamp_ns);
+      scans.points_per_message.push_back(static_cast<std::int64_t>(scan->points.size()));
+    } else {
+      ++imu.summary.count;
+      imu.addStamp(std::get<ImuSample>(message).stamp_ns);
+    }
+    if (progress && out.messages % 64 == 0 &&
+        !progress(std::max(0.0, reader.progress()), "reading log")) {
+      throw Cancelled();
+    }
+  }
+  bool have = false;
+  for (auto* acc : {&scans, &imu}) {
+    if (acc->summary.count == 0) continue;
+    out.start_ns = have ? std::min(out.start_ns, acc->summary.first_stamp_ns) : acc->summary.first_stamp_ns;
+    out.end_ns = have ? std::max(out.end_ns, acc->summary.last_stamp_ns) : acc->summary.last_stamp_ns;
+    have = true;
+  }
+  out.topics.push_back(scans.finish());
+  if (imu.summary.count > 0 || !imu_name.empty()) out.topics.push_back(imu.finish());
+  for (const auto& [reason, count] : reader.stats().dropped) {
+    if (count > 0) out.dropped[reason] = count;
+  }
+  if (progress) progress(1.0, "reading log");
+}
+
+LogSummary summarizePcap(const std::string& path, const Config& config, const ProgressFn& progress) {
+  LogSummary out;
+  out.path = path;
+  out.format = "Velodyne pcap";
+  std::error_code ec;
+  out.size_bytes = std::filesystem::file_size(path, ec);
+  VelodynePcapOptions options = velodynePcapOptions(config);
+  options.require_imu = false;
+  VelodynePcapReader reader(path, options);
+  const VelodyneProbe& probe = reader.probe();
+  out.properties.push_back({"sensor", std::string(velodyne::toString(probe.model)) +
+                                          (probe.model_from_product_id ? " (product id " : " (from the packet period; product id ") +
+                                          hexByte(probe.product) + ")"});
+  out.properties.push_back(
+      {"return mode", velodyne::toString(static_cast<velodyne::ReturnMode>(probe.return_mode))});
+  summarizeStreams(reader, "scans (UDP " + std::to_string(options.data_port) + " data packets)",
+                   reader.imuSource() == "none" ? std::string() : "IMU (" + reader.imuSource() + ")",
+                   out, progress);
+  out.properties.push_back({"rotation", fixed(reader.rotationHz(), 2) + " Hz (" +
+                                            fixed(reader.rotationHz() * 60.0, 0) + " rpm)"});
+  out.properties.push_back({"data packets", std::to_string(reader.dataPackets())});
+  std::string ports;
+  for (const auto& [port, count] : reader.datagramsByPort()) {
+    ports += (ports.empty() ? "" : ", ") + std::to_string(count) + " to port " + std::to_string(port);
+  }
+  out.properties.push_back({"UDP datagrams", ports.empty() ? "none" : ports});
+  out.properties.push_back({"IMU", reader.imuSource()});
+  out.points_topic = out.topics.front().name;
+  out.imu_topic = reader.imuSource() == "none" ? "" : reader.imuSource();
+  if (out.topics.front().count == 0) {
+    out.input_problem = "no scan could be decoded";
+  } else if (out.imu_topic.empty()) {
+    out.input_problem = path + ": no IMU: the capture holds no HDL-32E position packet with IMU "
+                        "values; give an IMU CSV (input.imu_csv, --imu-csv)";
+  }
+  return out;
+}
+
+LogSummary summarizePcdFolder(const std::string& path, const Config& config,
+                              const ProgressFn& progress) {
+  LogSummary out;
+  out.path = path;
+  out.format = "PCD folder";
+  const auto scans = findPcdScans(path);
+  std::uint64_t bytes = 0;
+  std::error_code ec;
+  for (const auto& s : scans) bytes += std::filesystem::file_size(s.path, ec);
+  out.size_bytes = bytes;
+  const PcdHeader header = readPcdHeader(scans.front().path);
+  std::string fields;
+  for (const auto& f : header.fields) fields += (fields.empty() ? "" : " ") + f.name;
+  out.properties.push_back({"PCD files", std::to_string(scans.size()) + " (first: " +
+                                             std::filesystem::path(scans.front().path).filename().string() +
+                                             ", DATA " + header.data + ")"});
+  out.properties.push_back({"fields", fields});
+  out.properties.push_back(
+      {"scan times", std::filesystem::exists(std::filesystem::path(path) / kPcdListFile)
+                         ? std::string("from ") + kPcdListFile
+                         : std::string("from the file names")});
+  const std::string csv = pcdFolderImuCsv(path, config.input);
+  out.properties.push_back({"IMU", csv.empty() ? "none" : "IMU CSV " + csv});
+  auto reader = openPcdFolderLog(path, config, false);
+  summarizeStreams(*reader, "scans (PCD files)", csv.empty() ? "" : "IMU (" + csv + ")", out, progress);
+  TopicSummary& t = out.topics.front();
+  t.fields = header.fields;
+  t.point_step = header.point_step;
+  out.points_topic = t.name;
+  out.imu_topic = csv;
+  if (csv.empty()) {
+    out.input_problem = path + ": no IMU: put the IMU CSV in the folder as " +
+                        std::string(kPcdFolderImuCsv) + " or give it with input.imu_csv (--imu-csv)";
+  }
+  return out;
+}
+
 }  // namespace
 
 double TopicSummary::durationSeconds() const {
@@ -69,9 +204,23 @@ double TopicSummary::rateHz() const {
   return count > 1 && duration > 0.0 ? static_cast<double>(count - 1) / duration : 0.0;
 }
 
+LogSummary summarizeLog(const std::string& path, const Config& config, const ProgressFn& progress) {
+  switch (detectLogFormat(path)) {
+    case LogFormat::kVelodynePcap: return summarizePcap(path, config, progress);
+    case LogFormat::kPcdFolder: return summarizePcdFolder(path, config, progress);
+    case LogFormat::kRosbag1: break;
+  }
+  return summarizeLog(path, config.input, progress);
+}
+
 LogSummary summarizeLog(const std::string& path, const InputConfig& input,
                         const ProgressFn& progress) {
-  if (detectLogFormat(path) != LogFormat::kRosbag1) throw Error(path + ": unknown log format");
+  const LogFormat format = detectLogFormat(path);
+  if (format != LogFormat::kRosbag1) {
+    Config config;
+    config.input = input;
+    return summarizeLog(path, config, progress);
+  }
   RosbagFile bag(path);
 
   LogSummary out;

@@ -1,8 +1,11 @@
 #pragma once
 /// What a log holds, topic by topic: the body of `storey info`. Works on any
-/// ROS1 bag, including topics Storey does not read.
+/// ROS1 bag, including topics Storey does not read, on Velodyne captures and
+/// on PCD folders (their streams decoded as a run would decode them).
 #include <cstdint>
+#include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "common/progress.h"
@@ -41,6 +44,12 @@ struct LogSummary {
   std::int64_t end_ns = 0;           ///< latest record time [ns]
   std::vector<TopicSummary> topics;  ///< sorted by name
 
+  // Velodyne pcap and PCD folder logs (empty for bags): what the reader found,
+  // as (name, value) lines, and what it skipped by reason. Their streams are
+  // listed in `topics` (type "scan" with point counts, or "imu").
+  std::vector<std::pair<std::string, std::string>> properties;
+  std::map<std::string, std::int64_t> dropped;
+
   std::string points_topic;   ///< the point cloud topic a run would read; empty when none
   std::string imu_topic;      ///< the IMU topic a run would read; empty when none
   std::string input_problem;  ///< why a run could not read the log; empty when it can
@@ -51,6 +60,10 @@ struct LogSummary {
 /// naming the file for a file that cannot be read, storey::Cancelled when
 /// `progress` returns false.
 LogSummary summarizeLog(const std::string& path, const InputConfig& input,
+                        const ProgressFn& progress = {});
+/// The same with the whole configuration (sensor.lidar_model and
+/// time_offset_lidar_to_imu as a run would use them on a pcap or PCD folder).
+LogSummary summarizeLog(const std::string& path, const Config& config,
                         const ProgressFn& progress = {});
 
 }  // namespace storey

@@ -2,9 +2,11 @@
 
 #include <chrono>
 #include <filesystem>
+#include <optional>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "backend/backend.h"
 #include "common/atomic_file.h"
 #include "common/error.h"
 #include "common/log.h"
@@ -22,14 +24,23 @@ PipelineResult runPipeline(const std::string& log_path, const Config& config,
 
   PipelineResult result;
   RunReportBuilder report(config);
+  // The SRP back end (keyframes, plane constraints, graph) corrects the
+  // odometry after each graph solve; off (--no-srp): trajectory = odometry.
+  std::unique_ptr<SrpBackend> backend;
+  if (config.backend.srp) backend = std::make_unique<SrpBackend>(config);
+  LidarInertialOdometry* front_end = nullptr;
   LidarInertialOdometry odometry(config, [&](OdometryResult&& scan) {
+    report.addScan(scan);
+    if (backend) {
+      if (const std::optional<Pose> correction = backend->addScan(scan))
+        front_end->applyCorrection(*correction);
+      return;
+    }
     const StampedPose stamped{scan.deskewed.time(), scan.T_world_lidar};
     result.odometry.push_back(stamped);
-    report.addScan(scan);
-    // The SRP back end (keyframes, plane constraints, graph) will correct
-    // these poses; until it exists the final trajectory is the odometry.
     result.trajectory.push_back(stamped);
   });
+  front_end = &odometry;
 
   LogMessage message;
   std::int64_t messages = 0;
@@ -45,6 +56,17 @@ PipelineResult runPipeline(const std::string& log_path, const Config& config,
     }
   }
   odometry.finish();
+  Trajectory keyframes;
+  std::string planes_json;
+  if (backend) {
+    if (progress) progress(1.0, "back end: final optimisation");
+    backend->finish();
+    result.odometry = backend->odometry();
+    result.trajectory = backend->trajectory();
+    keyframes = backend->keyframes();
+    planes_json = backend->planesJson();
+    report.setBackend(backend->stats());
+  }
   if (result.odometry.empty()) {
     throw Error(log_path + ": no scan could be processed (" + std::to_string(reader->stats().scans) +
                 " scans read)");
@@ -64,6 +86,10 @@ PipelineResult runPipeline(const std::string& log_path, const Config& config,
   if (ec) throw Error(out_dir + ": cannot create the output folder: " + ec.message());
   writeTum((std::filesystem::path(out_dir) / "odometry.tum").string(), result.odometry);
   writeTum((std::filesystem::path(out_dir) / "trajectory.tum").string(), result.trajectory);
+  if (backend) {
+    writeTum((std::filesystem::path(out_dir) / "keyframes.tum").string(), keyframes);
+    writeFileAtomically((std::filesystem::path(out_dir) / "planes.json").string(), planes_json + "\n");
+  }
   writeFileAtomically((std::filesystem::path(out_dir) / "report.json").string(),
                       result.report_json + "\n");
   return result;

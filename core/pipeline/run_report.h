@@ -1,10 +1,12 @@
 #pragma once
 /// The run report (report.json): input counts and drops by reason, IMU
 /// initialisation, per-stage timings (median, p95, mean), feature and match
-/// counts with rejections by reason, degenerate scans, end-point drift.
+/// counts with rejections by reason, degenerate scans, end-point drift (the
+/// paper's Table I), the back end's association counts and the paper's Table II.
 #include <memory>
 #include <string>
 
+#include "backend/backend.h"
 #include "config/config.h"
 #include "imu/imu_state.h"
 #include "io/log_reader.h"
@@ -22,6 +24,8 @@ class RunReportBuilder {
   void setInitialisation(const ImuState& initial_state);
   void setTrajectory(const Trajectory& trajectory);
   void setWallTime(double seconds);
+  /// The SRP back end's counts and timings (absent with --no-srp).
+  void setBackend(const BackendStats& stats);
   /// The report as pretty-printed JSON.
   std::string json() const;
 

@@ -1,0 +1,159 @@
+// LAS 1.4, point data record format 6 + extra bytes. Layout per the ASPRS
+// LAS 1.4 R15 specification; fields used: docs/outputs.md.
+#include <algorithm>
+#include <array>
+#include <limits>
+#include <cmath>
+#include <ctime>
+#include <ostream>
+
+#include "common/atomic_file.h"
+#include "common/error.h"
+#include "export/binary_out.h"
+#include "export/point_cloud_writers.h"
+
+namespace storey {
+
+namespace {
+
+using binary::put;
+using binary::putChars;
+
+/// One extra-bytes descriptor (192 bytes, LAS 1.4 R15 table 24).
+void putExtraBytesDescriptor(std::string& out, std::uint8_t data_type, const std::string& name,
+                             const std::string& description, bool has_no_data,
+                             std::int64_t no_data) {
+  put<std::uint16_t>(out, 0);                     // reserved
+  put<std::uint8_t>(out, data_type);              // 3 = uint16, 4 = int16, 6 = int32, 1 = uint8
+  put<std::uint8_t>(out, has_no_data ? 1 : 0);    // options: bit 0 no_data is valid
+  putChars(out, name, 32);
+  put<std::uint32_t>(out, 0);                     // unused
+  put<std::int64_t>(out, has_no_data ? no_data : 0);  // no_data (anytype, 8 bytes)
+  out.append(16, '\0');                           // deprecated1
+  put<std::int64_t>(out, 0);                      // min
+  out.append(16, '\0');                           // deprecated2
+  put<std::int64_t>(out, 0);                      // max
+  out.append(16, '\0');                           // deprecated3
+  put<double>(out, 0.0);                          // scale (unused: options bit 3 clear)
+  out.append(16, '\0');                           // deprecated4
+  put<double>(out, 0.0);                          // offset (unused: options bit 4 clear)
+  out.append(16, '\0');                           // deprecated5
+  putChars(out, description, 32);
+}
+
+}  // namespace
+
+void writeLas(const std::string& path, const MapCloud& cloud,
+              const std::vector<std::uint32_t>* indices) {
+  const std::size_t n = indices ? indices->size() : cloud.size();
+  auto at = [&](std::size_t k) -> std::size_t { return indices ? (*indices)[k] : k; };
+
+  // Offsets: the minimum corner rounded down to the metre; bounds from the
+  // quantised coordinates, so they agree exactly with the records.
+  Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
+  Eigen::Vector3d hi = -lo;
+  for (std::size_t k = 0; k < n; ++k) {
+    const Eigen::Vector3d p = cloud.positions[at(k)].cast<double>();
+    if (!p.allFinite()) throw Error(path + ": map point " + std::to_string(at(k)) + " is not finite");
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  if (n == 0) lo = hi = Eigen::Vector3d::Zero();
+  const Eigen::Vector3d offset(std::floor(lo.x()), std::floor(lo.y()), std::floor(lo.z()));
+  auto quantise = [&](double v, int axis) -> std::int32_t {
+    const double q = std::round((v - offset[axis]) / las::kScale);
+    if (q > 2147483647.0 || q < -2147483648.0)
+      throw Error(path + ": the map extends beyond what LAS can hold at 1 mm resolution");
+    return static_cast<std::int32_t>(q);
+  };
+  std::array<std::int32_t, 3> qmin{0, 0, 0}, qmax{0, 0, 0};
+  for (int a = 0; a < 3; ++a) {
+    qmin[a] = quantise(lo[a], a);
+    qmax[a] = quantise(hi[a], a);
+  }
+
+  std::string vlr;
+  put<std::uint16_t>(vlr, 0);  // reserved
+  putChars(vlr, "LASF_Spec", 16);
+  put<std::uint16_t>(vlr, 4);  // record ID 4: extra bytes
+  put<std::uint16_t>(vlr, 3 * 192);
+  putChars(vlr, "Storey extra bytes", 32);
+  putExtraBytesDescriptor(vlr, 4, "storey", "storey index, 0 = lowest", true, -1);
+  putExtraBytesDescriptor(vlr, 6, "keyframe", "keyframe that observed the point", false, 0);
+  putExtraBytesDescriptor(vlr, 1, "flags", "bit0 stairs, bit1 floor", false, 0);
+
+  const std::time_t now = std::time(nullptr);
+  std::tm utc{};
+  gmtime_r(&now, &utc);
+
+  std::string header;
+  header.reserve(las::kHeaderSize);
+  header += "LASF";
+  put<std::uint16_t>(header, 0);  // file source ID
+  // Global encoding: bit 4 (WKT) must be set with point formats 6-10; bit 0
+  // clear: the time field is not adjusted GPS time (it is the log's clock).
+  put<std::uint16_t>(header, 1u << 4);
+  header.append(16, '\0');  // project GUID
+  put<std::uint8_t>(header, 1);
+  put<std::uint8_t>(header, 4);
+  putChars(header, "Storey LiDAR-inertial SLAM", 32);
+  putChars(header, "Storey 0.1.0", 32);
+  put<std::uint16_t>(header, static_cast<std::uint16_t>(utc.tm_yday + 1));
+  put<std::uint16_t>(header, static_cast<std::uint16_t>(utc.tm_year + 1900));
+  put<std::uint16_t>(header, las::kHeaderSize);
+  put<std::uint32_t>(header, static_cast<std::uint32_t>(las::kHeaderSize + vlr.size()));
+  put<std::uint32_t>(header, 1);  // number of VLRs
+  put<std::uint8_t>(header, las::kPointFormat);
+  put<std::uint16_t>(header, las::kRecordLength);
+  // Legacy counts must be 0 with point formats 6-10 (no legacy compatibility).
+  put<std::uint32_t>(header, 0);
+  for (int r = 0; r < 5; ++r) put<std::uint32_t>(header, 0);
+  for (int a = 0; a < 3; ++a) put<double>(header, las::kScale);
+  for (int a = 0; a < 3; ++a) put<double>(header, offset[a]);
+  for (int a = 0; a < 3; ++a) {
+    put<double>(header, offset[a] + qmax[a] * las::kScale);
+    put<double>(header, offset[a] + qmin[a] * las::kScale);
+  }
+  put<std::uint64_t>(header, 0);  // start of waveform data
+  put<std::uint64_t>(header, 0);  // start of first EVLR
+  put<std::uint32_t>(header, 0);  // number of EVLRs
+  put<std::uint64_t>(header, n);  // number of point records
+  put<std::uint64_t>(header, n);  // by return: every point is return 1 of 1
+  for (int r = 1; r < 15; ++r) put<std::uint64_t>(header, 0);
+  if (header.size() != las::kHeaderSize) throw Error("LAS header size mismatch (internal)");
+
+  writeFileAtomically(path, [&](std::ostream& out) {
+    out.write(header.data(), static_cast<std::streamsize>(header.size()));
+    out.write(vlr.data(), static_cast<std::streamsize>(vlr.size()));
+    std::string chunk;
+    constexpr std::size_t kChunk = 1 << 16;
+    chunk.reserve(kChunk * las::kRecordLength);
+    for (std::size_t k = 0; k < n; ++k) {
+      const std::size_t i = at(k);
+      const Eigen::Vector3d p = cloud.positions[i].cast<double>();
+      put<std::int32_t>(chunk, quantise(p.x(), 0));
+      put<std::int32_t>(chunk, quantise(p.y(), 1));
+      put<std::int32_t>(chunk, quantise(p.z(), 2));
+      const float intensity = std::clamp(cloud.intensity[i], 0.0f, 65535.0f);
+      put<std::uint16_t>(chunk, static_cast<std::uint16_t>(std::lround(intensity)));
+      put<std::uint8_t>(chunk, 0x11);  // return 1 of 1
+      put<std::uint8_t>(chunk, 0);     // class flags, channel, scan direction, edge
+      put<std::uint8_t>(chunk, 1);     // classification: unclassified
+      const std::int16_t storey = cloud.storey[i];
+      put<std::uint8_t>(chunk, storey >= 0 && storey < 255 ? static_cast<std::uint8_t>(storey) : 255);
+      put<std::int16_t>(chunk, 0);   // scan angle
+      put<std::uint16_t>(chunk, 0);  // point source ID
+      put<double>(chunk, cloud.time[i]);
+      put<std::int16_t>(chunk, storey);
+      put<std::int32_t>(chunk, cloud.keyframe[i]);
+      put<std::uint8_t>(chunk, cloud.flags[i]);
+      if (chunk.size() >= kChunk * las::kRecordLength) {
+        out.write(chunk.data(), static_cast<std::streamsize>(chunk.size()));
+        chunk.clear();
+      }
+    }
+    out.write(chunk.data(), static_cast<std::streamsize>(chunk.size()));
+  });
+}
+
+}  // namespace storey

@@ -1,0 +1,92 @@
+// Binary PLY and PCD exports of the map (fields: docs/outputs.md).
+#include <ostream>
+
+#include "common/atomic_file.h"
+#include "export/binary_out.h"
+#include "export/point_cloud_writers.h"
+
+namespace storey {
+
+namespace {
+
+using binary::put;
+
+template <typename WriteRecord>
+void writeRecords(std::ostream& out, std::size_t n, std::size_t record_size, WriteRecord record) {
+  std::string chunk;
+  constexpr std::size_t kChunk = 1 << 16;
+  chunk.reserve(kChunk * record_size);
+  for (std::size_t k = 0; k < n; ++k) {
+    record(chunk, k);
+    if (chunk.size() >= kChunk * record_size) {
+      out.write(chunk.data(), static_cast<std::streamsize>(chunk.size()));
+      chunk.clear();
+    }
+  }
+  out.write(chunk.data(), static_cast<std::streamsize>(chunk.size()));
+}
+
+}  // namespace
+
+void writePly(const std::string& path, const MapCloud& cloud,
+              const std::vector<std::uint32_t>* indices) {
+  const std::size_t n = indices ? indices->size() : cloud.size();
+  auto at = [&](std::size_t k) -> std::size_t { return indices ? (*indices)[k] : k; };
+  writeFileAtomically(path, [&](std::ostream& out) {
+    out << "ply\n"
+           "format binary_little_endian 1.0\n"
+           "comment Storey map: world frame (z up, origin at the LiDAR's start), metres\n"
+           "comment time: absolute time of the point [s]; storey: -1 = none; stairs: 0/1\n"
+           "element vertex "
+        << n
+        << "\n"
+           "property float x\n"
+           "property float y\n"
+           "property float z\n"
+           "property float intensity\n"
+           "property double time\n"
+           "property int keyframe\n"
+           "property int storey\n"
+           "property uchar stairs\n"
+           "end_header\n";
+    writeRecords(out, n, 33, [&](std::string& b, std::size_t k) {
+      const std::size_t i = at(k);
+      put<float>(b, cloud.positions[i].x());
+      put<float>(b, cloud.positions[i].y());
+      put<float>(b, cloud.positions[i].z());
+      put<float>(b, cloud.intensity[i]);
+      put<double>(b, cloud.time[i]);
+      put<std::int32_t>(b, cloud.keyframe[i]);
+      put<std::int32_t>(b, cloud.storey[i]);
+      put<std::uint8_t>(b, (cloud.flags[i] & kMapPointStairs) ? 1 : 0);
+    });
+  });
+}
+
+void writePcd(const std::string& path, const MapCloud& cloud,
+              const std::vector<std::uint32_t>* indices) {
+  const std::size_t n = indices ? indices->size() : cloud.size();
+  auto at = [&](std::size_t k) -> std::size_t { return indices ? (*indices)[k] : k; };
+  writeFileAtomically(path, [&](std::ostream& out) {
+    out << "# .PCD v0.7 - Point Cloud Data file format (Storey map, world frame, metres)\n"
+           "VERSION 0.7\n"
+           "FIELDS x y z intensity time keyframe storey\n"
+           "SIZE 4 4 4 4 8 4 4\n"
+           "TYPE F F F F F I I\n"
+           "COUNT 1 1 1 1 1 1 1\n"
+           "WIDTH "
+        << n << "\nHEIGHT 1\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS " << n << "\nDATA binary\n";
+    writeRecords(out, n, 32, [&](std::string& b, std::size_t k) {
+      const std::size_t i = at(k);
+      put<float>(b, cloud.positions[i].x());
+      put<float>(b, cloud.positions[i].y());
+      put<float>(b, cloud.positions[i].z());
+      put<float>(b, cloud.intensity[i]);
+      put<double>(b, cloud.time[i]);
+      put<std::int32_t>(b, cloud.keyframe[i]);
+      put<std::int32_t>(b, cloud.storey[i]);
+    });
+  });
+}
+
+}  // namespace storey

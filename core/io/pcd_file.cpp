@@ -1,0 +1,284 @@
+#include "io/pcd_file.h"
+
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+
+#include "common/error.h"
+
+namespace storey {
+namespace {
+
+std::uint8_t datatypeOf(char type, int size) {
+  switch (type) {
+    case 'F': return size == 4 ? 7 : size == 8 ? 8 : 0;
+    case 'U': return size == 1 ? 2 : size == 2 ? 4 : size == 4 ? 6 : size == 8 ? 200 : 0;
+    case 'I': return size == 1 ? 1 : size == 2 ? 3 : size == 4 ? 5 : size == 8 ? 201 : 0;
+  }
+  return 0;
+}
+constexpr std::uint8_t kU64 = 200;  // converted to float64 after reading
+constexpr std::uint8_t kI64 = 201;
+
+std::vector<std::string> words(const std::string& line) {
+  std::istringstream in(line);
+  std::vector<std::string> out;
+  std::string w;
+  while (in >> w) out.push_back(w);
+  return out;
+}
+
+/// Parses the header from `in`; `raw_sizes` receives each field's element size.
+PcdHeader parseHeader(std::istream& in, const std::string& path, std::vector<int>& sizes,
+                      std::vector<char>& types, std::vector<int>& counts) {
+  PcdHeader h;
+  std::vector<std::string> names;
+  std::string line;
+  int line_number = 0;
+  bool have_points = false;
+  while (std::getline(in, line)) {
+    ++line_number;
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    if (line.empty() || line[0] == '#') continue;
+    const auto w = words(line);
+    if (w.empty()) continue;
+    const std::string& key = w[0];
+    auto fail = [&](const std::string& what) {
+      throw Error(path + ": PCD header line " + std::to_string(line_number) + " ('" + line + "'): " + what);
+    };
+    try {
+      if (key == "VERSION") {
+        h.version = w.size() > 1 ? w[1] : "";
+      } else if (key == "FIELDS" || key == "COLUMNS") {
+        names.assign(w.begin() + 1, w.end());
+      } else if (key == "SIZE") {
+        sizes.clear();
+        for (std::size_t i = 1; i < w.size(); ++i) sizes.push_back(std::stoi(w[i]));
+      } else if (key == "TYPE") {
+        types.clear();
+        for (std::size_t i = 1; i < w.size(); ++i) types.push_back(w[i].empty() ? '?' : w[i][0]);
+      } else if (key == "COUNT") {
+        counts.clear();
+        for (std::size_t i = 1; i < w.size(); ++i) counts.push_back(std::stoi(w[i]));
+      } else if (key == "WIDTH") {
+        h.width = static_cast<std::uint32_t>(std::stoul(w.at(1)));
+      } else if (key == "HEIGHT") {
+        h.height = static_cast<std::uint32_t>(std::stoul(w.at(1)));
+      } else if (key == "POINTS") {
+        h.points = std::stoull(w.at(1));
+        have_points = true;
+      } else if (key == "VIEWPOINT") {
+        // ignored: the scan is in the sensor frame
+      } else if (key == "DATA") {
+        h.data = w.size() > 1 ? w[1] : "";
+        if (h.data != "ascii" && h.data != "binary" && h.data != "binary_compressed") {
+          fail("DATA must be ascii, binary or binary_compressed");
+        }
+        h.data_offset = static_cast<std::size_t>(in.tellg());
+        break;
+      } else {
+        fail("unknown PCD header keyword '" + key + "'");
+      }
+    } catch (const Error&) {
+      throw;
+    } catch (const std::exception&) {
+      fail("expected numbers");
+    }
+  }
+  if (h.data.empty()) throw Error(path + ": not a PCD file (no DATA line in the header)");
+  if (names.empty()) throw Error(path + ": PCD header has no FIELDS line");
+  if (counts.empty()) counts.assign(names.size(), 1);
+  if (sizes.size() != names.size() || types.size() != names.size() || counts.size() != names.size()) {
+    throw Error(path + ": PCD header: FIELDS, SIZE, TYPE and COUNT have different lengths");
+  }
+  if (!have_points) h.points = static_cast<std::uint64_t>(h.width) * h.height;
+  std::uint32_t offset = 0;
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    PointFieldDesc f;
+    f.name = names[i];
+    f.offset = offset;
+    f.datatype = datatypeOf(types[i], sizes[i]);
+    f.count = static_cast<std::uint32_t>(std::max(1, counts[i]));
+    if (f.datatype == 0) {
+      throw Error(path + ": PCD field '" + f.name + "' has unsupported TYPE " + types[i] + " SIZE " +
+                  std::to_string(sizes[i]));
+    }
+    offset += static_cast<std::uint32_t>(sizes[i]) * f.count;
+    h.fields.push_back(f);
+  }
+  h.point_step = offset;
+  return h;
+}
+
+void convertInt64Fields(PcdHeader& h, std::vector<std::uint8_t>& bytes) {
+  for (auto& f : h.fields) {
+    if (f.datatype != kU64 && f.datatype != kI64) continue;
+    for (std::uint64_t p = 0; p < h.points; ++p) {
+      for (std::uint32_t k = 0; k < f.count; ++k) {
+        std::uint8_t* at = bytes.data() + p * h.point_step + f.offset + 8 * k;
+        double value;
+        if (f.datatype == kU64) {
+          std::uint64_t v;
+          std::memcpy(&v, at, 8);
+          value = static_cast<double>(v);
+        } else {
+          std::int64_t v;
+          std::memcpy(&v, at, 8);
+          value = static_cast<double>(v);
+        }
+        std::memcpy(at, &value, 8);
+      }
+    }
+    f.datatype = 8;
+  }
+}
+
+int elementSize(const PointFieldDesc& f) {
+  if (f.datatype == kU64 || f.datatype == kI64) return 8;
+  return static_cast<int>(pointFieldTypeSize(f.datatype));
+}
+
+}  // namespace
+
+bool looksLikePcd(const std::string& head) {
+  return head.rfind("# .PCD", 0) == 0 || head.rfind("VERSION", 0) == 0 || head.rfind("FIELDS", 0) == 0;
+}
+
+bool lzfDecompress(const std::uint8_t* in, std::size_t in_size, std::uint8_t* out, std::size_t out_size) {
+  std::size_t ip = 0, op = 0;
+  while (ip < in_size) {
+    const unsigned ctrl = in[ip++];
+    if (ctrl < 32) {
+      const std::size_t run = ctrl + 1;
+      if (ip + run > in_size || op + run > out_size) return false;
+      std::memcpy(out + op, in + ip, run);
+      ip += run;
+      op += run;
+    } else {
+      std::size_t length = ctrl >> 5;
+      if (length == 7) {
+        if (ip >= in_size) return false;
+        length += in[ip++];
+      }
+      if (ip >= in_size) return false;
+      const std::size_t back = ((ctrl & 0x1F) << 8) + in[ip++] + 1;
+      length += 2;
+      if (back > op || op + length > out_size) return false;
+      for (std::size_t k = 0; k < length; ++k, ++op) out[op] = out[op - back];
+    }
+  }
+  return op == out_size;
+}
+
+PointCloudView PcdCloud::view() const {
+  PointCloudView v;
+  v.fields = header.fields;
+  v.height = 1;
+  v.width = static_cast<std::uint32_t>(header.points);
+  v.point_step = header.point_step;
+  v.row_step = static_cast<std::uint32_t>(header.point_step * header.points);
+  v.data = bytes.data();
+  v.size = bytes.size();
+  return v;
+}
+
+PcdHeader readPcdHeader(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw Error(path + ": cannot open the PCD file");
+  std::vector<int> sizes, counts;
+  std::vector<char> types;
+  return parseHeader(in, path, sizes, types, counts);
+}
+
+PcdCloud readPcd(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw Error(path + ": cannot open the PCD file");
+  std::vector<int> sizes, counts;
+  std::vector<char> types;
+  PcdCloud cloud;
+  cloud.header = parseHeader(in, path, sizes, types, counts);
+  PcdHeader& h = cloud.header;
+  const std::size_t body = static_cast<std::size_t>(h.points) * h.point_step;
+  cloud.bytes.assign(body, 0);
+  if (h.data == "binary") {
+    in.read(reinterpret_cast<char*>(cloud.bytes.data()), static_cast<std::streamsize>(body));
+    const auto got = static_cast<std::size_t>(in.gcount());
+    if (got != body) {
+      throw Error(path + ": PCD body truncated at byte " + std::to_string(h.data_offset + got) +
+                  ": " + std::to_string(h.points) + " points need " + std::to_string(body) +
+                  " bytes, found " + std::to_string(got));
+    }
+  } else if (h.data == "binary_compressed") {
+    std::uint32_t sizes_le[2] = {0, 0};
+    in.read(reinterpret_cast<char*>(sizes_le), 8);
+    if (in.gcount() != 8) throw Error(path + ": PCD binary_compressed body truncated (no size words)");
+    if (sizes_le[1] != body) {
+      throw Error(path + ": PCD binary_compressed: uncompressed size " + std::to_string(sizes_le[1]) +
+                  " does not match " + std::to_string(h.points) + " points of " +
+                  std::to_string(h.point_step) + " bytes");
+    }
+    std::vector<std::uint8_t> packed(sizes_le[0]);
+    in.read(reinterpret_cast<char*>(packed.data()), static_cast<std::streamsize>(packed.size()));
+    if (static_cast<std::size_t>(in.gcount()) != packed.size()) {
+      throw Error(path + ": PCD binary_compressed body truncated");
+    }
+    std::vector<std::uint8_t> soa(body);
+    if (body > 0 && !lzfDecompress(packed.data(), packed.size(), soa.data(), soa.size())) {
+      throw Error(path + ": PCD binary_compressed body is corrupt (LZF)");
+    }
+    // Field-major (all points' first field, then the second...) to point-major.
+    std::size_t at = 0;
+    for (const auto& f : h.fields) {
+      const std::size_t width = static_cast<std::size_t>(elementSize(f)) * f.count;
+      for (std::uint64_t p = 0; p < h.points; ++p, at += width) {
+        std::memcpy(cloud.bytes.data() + p * h.point_step + f.offset, soa.data() + at, width);
+      }
+    }
+  } else {  // ascii
+    std::string line;
+    std::uint64_t p = 0;
+    std::int64_t line_number = 0;
+    while (p < h.points && std::getline(in, line)) {
+      ++line_number;
+      const auto w = words(line);
+      if (w.empty()) continue;
+      std::size_t k = 0;
+      std::uint8_t* point = cloud.bytes.data() + p * h.point_step;
+      for (const auto& f : h.fields) {
+        for (std::uint32_t c = 0; c < f.count; ++c, ++k) {
+          if (k >= w.size()) {
+            throw Error(path + ": PCD ascii data line " + std::to_string(line_number) + " has " +
+                        std::to_string(w.size()) + " values, expected more");
+          }
+          const double v = std::strtod(w[k].c_str(), nullptr);
+          std::uint8_t* at = point + f.offset + c * elementSize(f);
+          switch (f.datatype) {
+            case 1: { auto x = static_cast<std::int8_t>(v); std::memcpy(at, &x, 1); break; }
+            case 2: { auto x = static_cast<std::uint8_t>(v); std::memcpy(at, &x, 1); break; }
+            case 3: { auto x = static_cast<std::int16_t>(v); std::memcpy(at, &x, 2); break; }
+            case 4: { auto x = static_cast<std::uint16_t>(v); std::memcpy(at, &x, 2); break; }
+            case 5: { auto x = static_cast<std::int32_t>(v); std::memcpy(at, &x, 4); break; }
+            case 6: { auto x = static_cast<std::uint32_t>(v); std::memcpy(at, &x, 4); break; }
+            case 7: { auto x = static_cast<float>(v); std::memcpy(at, &x, 4); break; }
+            default: {  // float64 and 64-bit integers (read as double directly)
+              std::memcpy(at, &v, 8);
+            }
+          }
+        }
+      }
+      ++p;
+    }
+    if (p < h.points) {
+      throw Error(path + ": PCD ascii data ends after " + std::to_string(p) + " of " +
+                  std::to_string(h.points) + " points");
+    }
+    for (auto& f : h.fields) {
+      if (f.datatype == kU64 || f.datatype == kI64) f.datatype = 8;  // already stored as double
+    }
+  }
+  convertInt64Fields(h, cloud.bytes);
+  return cloud;
+}
+
+}  // namespace storey

@@ -1,0 +1,240 @@
+#include "map/map_builder.h"
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstring>
+#include <string>
+
+#include "common/error.h"
+#include "map/voxel_hash.h"
+
+namespace storey {
+
+void MapCloud::reserve(std::size_t n) {
+  positions.reserve(n);
+  intensity.reserve(n);
+  time.reserve(n);
+  keyframe.reserve(n);
+  storey.reserve(n);
+  flags.reserve(n);
+}
+
+void MapCloud::clear() { *this = MapCloud(); }
+
+void MapCloud::pushFrom(const MapCloud& other, std::size_t i) {
+  positions.push_back(other.positions[i]);
+  intensity.push_back(other.intensity[i]);
+  time.push_back(other.time[i]);
+  keyframe.push_back(other.keyframe[i]);
+  storey.push_back(other.storey[i]);
+  flags.push_back(other.flags[i]);
+}
+
+void MapCloud::bounds(Eigen::Vector3d& min, Eigen::Vector3d& max) const {
+  if (positions.empty()) {
+    min.setZero();
+    max.setZero();
+    return;
+  }
+  Eigen::Vector3f lo = positions.front(), hi = positions.front();
+  for (const Eigen::Vector3f& p : positions) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  min = lo.cast<double>();
+  max = hi.cast<double>();
+}
+
+MapBuilder::MapBuilder(const MapConfig& config) : config_(config) {
+  if (!(config_.voxel_size > 0.0)) throw Error("map.voxel_size must be positive");
+  if (!(config_.max_range > 0.0)) throw Error("map.max_range must be positive");
+  if (config_.spill_to_disk) {
+    // Anonymous: removed by the system when closed, also after a crash.
+    file_ = std::tmpfile();
+    if (!file_)
+      throw Error(std::string("map: cannot create a temporary file for the keyframe scans (") +
+                  std::strerror(errno) + "); set map.spill_to_disk: false to keep them in RAM");
+  }
+}
+
+MapBuilder::~MapBuilder() {
+  if (file_) std::fclose(file_);
+}
+
+std::vector<int> MapBuilder::keyframes() const {
+  std::vector<int> out;
+  out.reserve(entries_.size());
+  for (const Entry& e : entries_) out.push_back(e.keyframe);
+  return out;
+}
+
+void MapBuilder::addKeyframeScan(int keyframe, const Scan& scan) {
+  if (keyframe < 0) throw Error("map: keyframe index must be >= 0, got " + std::to_string(keyframe));
+  if (static_cast<std::size_t>(keyframe) >= entry_of_keyframe_.size())
+    entry_of_keyframe_.resize(static_cast<std::size_t>(keyframe) + 1, -1);
+  if (entry_of_keyframe_[static_cast<std::size_t>(keyframe)] >= 0)
+    throw Error("map: keyframe " + std::to_string(keyframe) + " was added twice");
+
+  // Downsample in the LiDAR frame: centroid of each voxel, mean intensity,
+  // time of the voxel's first point (the same rule as the map's merge).
+  const double inv = 1.0 / config_.voxel_size;
+  const float max_range2 = static_cast<float>(config_.max_range * config_.max_range);
+  VoxelIndex index(scan.points.size() / 2 + 16);
+  struct Acc {
+    double x, y, z;
+    float intensity, dt;
+    std::uint32_t n;
+  };
+  std::vector<Acc> acc;
+  acc.reserve(scan.points.size() / 2 + 16);
+  for (const ScanPoint& sp : scan.points) {
+    ++stats_.points_in;
+    if (!sp.p.allFinite()) {
+      ++stats_.points_non_finite;
+      continue;
+    }
+    if (sp.p.squaredNorm() > max_range2) {
+      ++stats_.points_beyond_range;
+      continue;
+    }
+    const Eigen::Vector3d p = sp.p.cast<double>();
+    bool inserted = false;
+    const std::uint32_t v = index.findOrInsert(voxelKey(p, inv), inserted);
+    if (inserted) {
+      acc.push_back({p.x(), p.y(), p.z(), sp.intensity, sp.time, 1});
+    } else {
+      Acc& a = acc[v];
+      a.x += p.x();
+      a.y += p.y();
+      a.z += p.z();
+      a.intensity += sp.intensity;
+      a.dt = std::min(a.dt, sp.time);
+      ++a.n;
+    }
+  }
+  std::vector<StoredPoint> points;
+  points.reserve(acc.size());
+  for (const Acc& a : acc) {
+    const double n = a.n;
+    points.push_back({static_cast<float>(a.x / n), static_cast<float>(a.y / n),
+                      static_cast<float>(a.z / n), static_cast<float>(a.intensity / n), a.dt});
+  }
+
+  Entry entry;
+  entry.keyframe = keyframe;
+  entry.stamp_ns = scan.stamp_ns;
+  entry.offset = stored_points_;
+  entry.count = points.size();
+  if (file_) {
+    if (!points.empty() &&
+        std::fwrite(points.data(), sizeof(StoredPoint), points.size(), file_) != points.size())
+      throw Error("map: cannot write the keyframe scans' temporary file (disk full?)");
+  } else {
+    memory_.insert(memory_.end(), points.begin(), points.end());
+  }
+  stored_points_ += points.size();
+  entry_of_keyframe_[static_cast<std::size_t>(keyframe)] = static_cast<int>(entries_.size());
+  entries_.push_back(entry);
+  ++stats_.keyframes;
+  stats_.points_stored = static_cast<std::int64_t>(stored_points_);
+  stats_.stored_bytes = static_cast<std::int64_t>(stored_points_ * sizeof(StoredPoint));
+}
+
+void MapBuilder::readPoints(const Entry& entry, std::vector<StoredPoint>& out) const {
+  out.resize(entry.count);
+  if (entry.count == 0) return;
+  if (!file_) {
+    std::copy(memory_.begin() + static_cast<std::ptrdiff_t>(entry.offset),
+              memory_.begin() + static_cast<std::ptrdiff_t>(entry.offset + entry.count), out.begin());
+    return;
+  }
+  if (std::fflush(file_) != 0 ||
+      std::fseek(file_, static_cast<long>(entry.offset * sizeof(StoredPoint)), SEEK_SET) != 0 ||
+      std::fread(out.data(), sizeof(StoredPoint), entry.count, file_) != entry.count)
+    throw Error("map: cannot read back the keyframe scans' temporary file");
+  // Appends continue at the end.
+  std::fseek(file_, 0, SEEK_END);
+}
+
+MapCloud MapBuilder::build(const std::vector<Pose>& T_world_lidar_per_keyframe,
+                           const ProgressFn& progress) const {
+  for (const Entry& e : entries_) {
+    if (static_cast<std::size_t>(e.keyframe) >= T_world_lidar_per_keyframe.size())
+      throw Error("map: keyframe " + std::to_string(e.keyframe) + " has no pose (" +
+                  std::to_string(T_world_lidar_per_keyframe.size()) + " poses given)");
+  }
+  const double inv = 1.0 / config_.voxel_size;
+  // Voxel accumulators: sums relative to the voxel's corner (small numbers,
+  // exact enough in float), first time and keyframe.
+  struct Acc {
+    float sx, sy, sz, si;
+    std::uint32_t n;
+    std::int32_t keyframe;
+    double time;
+  };
+  std::vector<Acc> acc;
+  std::vector<std::uint64_t> keys;
+  VoxelIndex index(static_cast<std::size_t>(stored_points_ / 4 + 1024));
+  std::vector<StoredPoint> points;
+  for (std::size_t e = 0; e < entries_.size(); ++e) {
+    const Entry& entry = entries_[e];
+    readPoints(entry, points);
+    const Pose& T = T_world_lidar_per_keyframe[static_cast<std::size_t>(entry.keyframe)];
+    const Eigen::Matrix3d R = T.rotationMatrix();
+    const Eigen::Vector3d t = T.translation();
+    const double stamp = nsToSeconds(entry.stamp_ns);
+    for (const StoredPoint& sp : points) {
+      const Eigen::Vector3d p = R * Eigen::Vector3d(sp.x, sp.y, sp.z) + t;
+      const Eigen::Vector3d cell(std::floor(p.x() * inv), std::floor(p.y() * inv),
+                                 std::floor(p.z() * inv));
+      const std::uint64_t key = packVoxel(static_cast<std::int64_t>(cell.x()),
+                                          static_cast<std::int64_t>(cell.y()),
+                                          static_cast<std::int64_t>(cell.z()));
+      const Eigen::Vector3f local = (p - cell * config_.voxel_size).cast<float>();
+      bool inserted = false;
+      const std::uint32_t v = index.findOrInsert(key, inserted);
+      if (inserted) {
+        acc.push_back({local.x(), local.y(), local.z(), sp.intensity, 1, entry.keyframe,
+                       stamp + static_cast<double>(sp.dt)});
+        keys.push_back(key);
+      } else {
+        Acc& a = acc[v];
+        a.sx += local.x();
+        a.sy += local.y();
+        a.sz += local.z();
+        a.si += sp.intensity;
+        ++a.n;
+      }
+    }
+    if (progress && (e % 16) == 0 &&
+        !progress(static_cast<double>(e + 1) / static_cast<double>(entries_.size()), "map"))
+      throw Cancelled();
+  }
+
+  index = VoxelIndex(0);  // the hash table is not needed any more: free it first
+  MapCloud cloud;
+  cloud.reserve(acc.size());
+  constexpr std::int64_t kBias = std::int64_t{1} << 20;
+  constexpr std::uint64_t kMask = (std::uint64_t{1} << 21) - 1;
+  for (std::size_t v = 0; v < acc.size(); ++v) {
+    const Acc& a = acc[v];
+    const std::uint64_t key = keys[v];
+    const Eigen::Vector3d corner(
+        static_cast<double>(static_cast<std::int64_t>((key >> 42) & kMask) - kBias),
+        static_cast<double>(static_cast<std::int64_t>((key >> 21) & kMask) - kBias),
+        static_cast<double>(static_cast<std::int64_t>(key & kMask) - kBias));
+    const float n = static_cast<float>(a.n);
+    const Eigen::Vector3d p =
+        corner * config_.voxel_size + Eigen::Vector3d(a.sx / n, a.sy / n, a.sz / n);
+    cloud.positions.push_back(p.cast<float>());
+    cloud.intensity.push_back(a.si / n);
+    cloud.time.push_back(a.time);
+    cloud.keyframe.push_back(a.keyframe);
+    cloud.storey.push_back(kNoStorey);
+    cloud.flags.push_back(0);
+  }
+  return cloud;
+}
+
+}  // namespace storey

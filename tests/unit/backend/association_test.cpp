@@ -1,0 +1,96 @@
+// Association on hand-built cases: a corridor's two parallel walls face each
+// other (told apart by the side they are seen from); two parallel walls facing
+// the same way closer than the gates are ambiguous; joint matching picks the
+// wall whose normal agrees with the rotation the other planes imply.
+#include <gtest/gtest.h>
+
+#include "backend/association.h"
+
+namespace storey::backend {
+namespace {
+
+DetectedPlane srp(const Eigen::Vector3d& n, double d, int points = 2000) {
+  DetectedPlane p;
+  p.plane = Plane(n, d);
+  p.points = points;
+  p.covariance = Eigen::Vector3d(1e-6, 1e-6, 1e-5).asDiagonal();
+  return p;
+}
+
+PlanePrediction predicted(int id, const Eigen::Vector3d& n, double d) {
+  return {id, n.normalized(), d};
+}
+
+Eigen::Vector3d yawed(const Eigen::Vector3d& n, double deg) {
+  return Eigen::AngleAxisd(deg * M_PI / 180.0, Eigen::Vector3d::UnitZ()) * n;
+}
+
+TEST(Association, CorridorWallsFacingEachOtherAreToldApart) {
+  // Corridor 2.2 m wide along x; the sensor in the middle, 0.6 m above the floor.
+  const std::vector<PlanePrediction> map{predicted(0, {0, 1, 0}, 1.1), predicted(1, {0, -1, 0}, 1.1),
+                                         predicted(2, {0, 0, -1}, 0.6)};
+  // Observed with a 1 deg yaw error and 5 cm offset across the corridor.
+  const std::vector<DetectedPlane> srps{srp({0, 0, -1}, 0.61), srp(yawed({0, 1, 0}, 1.0), 1.15),
+                                        srp(yawed({0, -1, 0}, 1.0), 1.05)};
+  const AssociationResult r = associate(srps, map, AssociationConfig{});
+  ASSERT_EQ(r.srps.size(), 3u);
+  EXPECT_EQ(r.srps[0].outcome, AssociationOutcome::kMatched);
+  EXPECT_EQ(r.srps[0].landmark, 2);
+  EXPECT_EQ(r.srps[1].outcome, AssociationOutcome::kMatched);
+  EXPECT_EQ(r.srps[1].landmark, 0);
+  EXPECT_EQ(r.srps[2].outcome, AssociationOutcome::kMatched);
+  EXPECT_EQ(r.srps[2].landmark, 1);
+  EXPECT_GE(r.gate_rejects[static_cast<std::size_t>(GateReject::kFacing)], 2);
+}
+
+TEST(Association, ParallelWallsCloserThanTheGatesAreAmbiguous) {
+  // Two walls facing the same way, 0.25 m apart (a recess); the SRP lies between them.
+  const std::vector<PlanePrediction> map{predicted(0, {1, 0, 0}, 2.0), predicted(1, {1, 0, 0}, 2.25),
+                                         predicted(2, {0, 0, -1}, 0.6)};
+  const std::vector<DetectedPlane> srps{srp({1, 0, 0}, 2.125), srp({0, 0, -1}, 0.6)};
+  const AssociationResult r = associate(srps, map, AssociationConfig{});
+  EXPECT_EQ(r.srps[0].outcome, AssociationOutcome::kAmbiguous);
+  EXPECT_EQ(r.srps[0].candidates, 2);
+  EXPECT_EQ(r.srps[1].outcome, AssociationOutcome::kMatched);
+  EXPECT_EQ(r.srps[1].landmark, 2);
+}
+
+TEST(Association, ParallelWallsFartherApartThanTheGatesMatchTheRightOne) {
+  const std::vector<PlanePrediction> map{predicted(0, {1, 0, 0}, 2.0), predicted(1, {1, 0, 0}, 2.7)};
+  for (double d : {1.95, 2.05, 2.65, 2.75}) {
+    const AssociationResult r = associate({srp({1, 0, 0}, d)}, map, AssociationConfig{});
+    EXPECT_EQ(r.srps[0].outcome, AssociationOutcome::kMatched) << d;
+    EXPECT_EQ(r.srps[0].landmark, d < 2.4 ? 0 : 1) << d;
+  }
+}
+
+TEST(Association, JointMatchingUsesTheRotationOfTheOtherPlanes) {
+  // Two walls facing +x at the same distance, their normals 4 deg apart in yaw
+  // (within the 6 deg gate). Alone, an SRP half-way between them is ambiguous.
+  const std::vector<PlanePrediction> map{predicted(0, {1, 0, 0}, 3.0),
+                                         predicted(1, yawed({1, 0, 0}, 4.0), 3.0),
+                                         predicted(2, {0, 1, 0}, 1.5), predicted(3, {0, 0, -1}, 0.6)};
+  const DetectedPlane between = srp(yawed({1, 0, 0}, 2.0), 3.0);
+  EXPECT_EQ(associate({between}, map, AssociationConfig{}).srps[0].outcome,
+            AssociationOutcome::kAmbiguous);
+  // With the orthogonal wall observed 2 deg yawed as well, one rotation of the
+  // keyframe explains both only if the first wall is landmark 0.
+  const std::vector<DetectedPlane> srps{between, srp(yawed({0, 1, 0}, 2.0), 1.5), srp({0, 0, -1}, 0.6)};
+  const AssociationResult r = associate(srps, map, AssociationConfig{});
+  EXPECT_EQ(r.srps[0].outcome, AssociationOutcome::kMatched);
+  EXPECT_EQ(r.srps[0].landmark, 0);
+  EXPECT_EQ(r.srps[1].landmark, 2);
+  EXPECT_EQ(r.srps[2].landmark, 3);
+}
+
+TEST(Association, UnknownPlanesAreNewButNotNextToAKnownOne) {
+  const std::vector<PlanePrediction> map{predicted(0, {1, 0, 0}, 2.0)};
+  const AssociationResult r =
+      associate({srp({0, 1, 0}, 2.0), srp({1, 0, 0}, 2.35), srp({1, 0, 0}, 4.0)}, map, AssociationConfig{});
+  EXPECT_EQ(r.srps[0].outcome, AssociationOutcome::kNewPlane);
+  EXPECT_EQ(r.srps[1].outcome, AssociationOutcome::kNearExisting);
+  EXPECT_EQ(r.srps[2].outcome, AssociationOutcome::kNewPlane);
+}
+
+}  // namespace
+}  // namespace storey::backend

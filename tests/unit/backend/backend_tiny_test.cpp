@@ -1,0 +1,148 @@
+// End to end on the simulator's `tiny` building: simulate, run the pipeline
+// with and without the SRP back end, compare both with the simulator's truth.
+// Also checks the outputs (keyframes.tum, planes.json, report) and that every
+// plane association is right when judged with the true keyframe poses.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "config/calibration.h"
+#include "eval/evaluation.h"
+#include "pipeline/pipeline.h"
+#include "sim/simulator.h"
+#include "support/temp_dir.h"
+#include "trajectory/drift.h"
+#include "types/plane.h"
+
+namespace storey {
+namespace {
+
+class BackendTiny : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    dir_ = new test::TempDir();
+    sim::SimulationOptions options;
+    options.threads = 2;
+    sim::simulate(sim::loadBuildingSpec("tiny"), options, dir_->file("sim"));
+  }
+  static void TearDownTestSuite() {
+    delete dir_;
+    dir_ = nullptr;
+  }
+  static Config config(bool srp) {
+    Config c;
+    applyCalibrationFile(c, dir_->file("sim/") + sim::kCalibrationFile);
+    c.backend.srp = srp;
+    return c;
+  }
+  static test::TempDir* dir_;
+};
+test::TempDir* BackendTiny::dir_ = nullptr;
+
+TEST_F(BackendTiny, OptimisedTrajectoryIsAccurateAndOutputsAreComplete) {
+  const std::string out = dir_->file("out_srp");
+  const PipelineResult r = runPipeline(dir_->file("sim/simulation.bag"), config(true), out);
+  const Trajectory gt = readTum(dir_->file("sim/") + sim::kLidarTruthFile);
+  ASSERT_EQ(r.trajectory.size(), r.odometry.size());
+
+  const eval::TrajectoryEvaluation e = eval::evaluateTrajectory(gt, r.trajectory);
+  const eval::TrajectoryEvaluation e_odo = eval::evaluateTrajectory(gt, r.odometry);
+  const double ate = e.ateWith(eval::Alignment::kYawTranslation).translation.rmse;
+  const double ate_rot = e.ateWith(eval::Alignment::kYawTranslation).rotation.rmse;
+  std::cout << "tiny: ATE (yaw + translation aligned) " << ate << " m, " << ate_rot << " rad; odometry "
+            << e_odo.ateWith(eval::Alignment::kYawTranslation).translation.rmse << " m; end-point drift "
+            << e.est_drift.dxyz << " m " << e.est_drift.dangle << " rad (odometry "
+            << e_odo.est_drift.dxyz << " m " << e_odo.est_drift.dangle << " rad)\n";
+  EXPECT_LT(ate, 0.05);
+  EXPECT_LT(ate_rot, 0.01);
+  EXPECT_LT(e.est_drift.dxyz, 0.05);
+  EXPECT_LT(e.est_drift.dangle, 0.02);
+
+  // No jump in the output: consecutive scans move less than the robot can in 0.1 s.
+  for (std::size_t i = 1; i < r.trajectory.size(); ++i) {
+    const Pose step = r.trajectory[i - 1].pose.inverse() * r.trajectory[i].pose;
+    ASSERT_LT(step.translation().norm(), 0.25) << i;
+    ASSERT_LT(step.angle(), 0.2) << i;
+  }
+
+  // Outputs.
+  for (const char* f : {"trajectory.tum", "odometry.tum", "keyframes.tum", "planes.json", "report.json"})
+    EXPECT_TRUE(std::filesystem::exists(std::filesystem::path(out) / f)) << f;
+  const Trajectory keyframes = readTum(out + "/keyframes.tum");
+  EXPECT_GE(keyframes.size(), 7u);  // 9.4 m walked, a keyframe per metre
+  std::ifstream report_file(out + "/report.json");
+  const nlohmann::json report = nlohmann::json::parse(report_file);
+  EXPECT_EQ(report["backend"]["keyframes"].get<std::size_t>(), keyframes.size());
+  const int reported_wrong = report["backend"]["association"]["wrong_associations"].get<int>();
+  EXPECT_TRUE(report["table_ii_mean_median_ms"].contains("srp_extraction_per_keyframe"));
+
+  // Every plane observation checked against the truth: the observed plane,
+  // placed with the true keyframe pose, lies on the plane its other
+  // observations agree on (normal within 3 deg of their mean, distance
+  // within 0.1 m of their median).
+  std::ifstream planes_file(out + "/planes.json");
+  const nlohmann::json planes = nlohmann::json::parse(planes_file);
+  auto truePose = [&](double t) {
+    std::size_t best = 0;
+    for (std::size_t i = 0; i < gt.size(); ++i)
+      if (std::abs(gt[i].time - t) < std::abs(gt[best].time - t)) best = i;
+    return gt[best].pose;
+  };
+  int observations = 0, wrong = 0, wrong_not_flagged = 0, flagged = 0;
+  for (const auto& plane : planes["planes"]) {
+    const auto& obs = plane["observations"];
+    ASSERT_FALSE(obs.empty());
+    std::vector<Plane> world;
+    for (const auto& o : obs) {
+      const Eigen::Vector3d n(o["normal"][0].get<double>(), o["normal"][1].get<double>(),
+                              o["normal"][2].get<double>());
+      const Plane p_kf(n, o["distance"].get<double>());
+      world.push_back(p_kf.transformed(truePose(o["time"].get<double>())));
+    }
+    std::vector<double> offsets;  // signed along the first normal
+    for (const Plane& p : world)
+      offsets.push_back(p.normal().dot(world[0].normal()) > 0 ? p.distance() : -p.distance());
+    std::vector<double> sorted = offsets;
+    std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
+    const double median = sorted[sorted.size() / 2];
+    Eigen::Vector3d mean_normal = Eigen::Vector3d::Zero();  // oriented like the first
+    for (const Plane& p : world)
+      mean_normal += p.normal().dot(world[0].normal()) > 0 ? p.normal() : Eigen::Vector3d(-p.normal());
+    mean_normal.normalize();
+    for (std::size_t i = 0; i < world.size(); ++i) {
+      ++observations;
+      const double angle =
+          std::acos(std::clamp(std::abs(world[i].normal().dot(mean_normal)), 0.0, 1.0));
+      const bool outlier = obs[i]["outlier"].get<bool>();
+      flagged += outlier;
+      if (angle > 3.0 * M_PI / 180.0 || std::abs(offsets[i] - median) > 0.1) {
+        ++wrong;
+        if (!outlier) ++wrong_not_flagged;
+      }
+    }
+  }
+  std::cout << "tiny: " << planes["planes"].size() << " planes, " << observations
+            << " observations, " << wrong << " wrong by the truth, " << flagged << " down-weighted\n";
+  EXPECT_GT(observations, 20);
+  // No wrong association survives the robust loss (tiny has none at all);
+  // the report counts what planes.json flags, a small share of the observations.
+  EXPECT_EQ(wrong_not_flagged, 0);
+  EXPECT_EQ(wrong, 0);
+  EXPECT_EQ(reported_wrong, flagged);
+  EXPECT_LE(flagged, observations / 10);
+}
+
+TEST_F(BackendTiny, NoSrpKeepsTheOdometry) {
+  const std::string out = dir_->file("out_nosrp");
+  const PipelineResult r = runPipeline(dir_->file("sim/simulation.bag"), config(false), out);
+  ASSERT_EQ(r.trajectory.size(), r.odometry.size());
+  for (std::size_t i = 0; i < r.trajectory.size(); ++i)
+    ASSERT_TRUE(r.trajectory[i].pose.isApprox(r.odometry[i].pose, 0.0, 0.0));
+  EXPECT_FALSE(std::filesystem::exists(std::filesystem::path(out) / "planes.json"));
+}
+
+}  // namespace
+}  // namespace storey

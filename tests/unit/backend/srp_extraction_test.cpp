@@ -1,0 +1,132 @@
+// SRP extraction on synthetic scans with known planes: the largest nearly
+// orthogonal planes are found with their point counts and fit uncertainty;
+// clutter (small, dense surfaces) and small scans give no SRP.
+#include <gtest/gtest.h>
+
+#include <Eigen/Eigenvalues>
+#include <random>
+
+#include "backend/plane_math.h"
+#include "backend/srp_extraction.h"
+
+namespace storey::backend {
+namespace {
+
+struct Patch {
+  Eigen::Vector3d origin, u, v;  // points origin + a u + b v, a, b in [0, 1]
+  double spacing;
+};
+
+void addPatch(std::vector<Eigen::Vector3f>& points, const Patch& p, std::mt19937& rng, double noise) {
+  std::normal_distribution<double> g(0.0, noise);
+  const Eigen::Vector3d n = p.u.cross(p.v).normalized();
+  const int nu = static_cast<int>(p.u.norm() / p.spacing), nv = static_cast<int>(p.v.norm() / p.spacing);
+  for (int i = 0; i <= nu; ++i)
+    for (int j = 0; j <= nv; ++j) {
+      const Eigen::Vector3d x = p.origin + p.u * (double(i) / nu) + p.v * (double(j) / nv) + n * g(rng);
+      points.push_back(x.cast<float>());
+    }
+}
+
+/// A room around the sensor: floor 0.6 m below, ceiling 2.4 m above, walls at
+/// x = 4 and x = -3 (parallel), y = -2 and y = 2.5, a dense table top 0.3 m
+/// below the sensor (clutter) and scattered points.
+std::vector<Eigen::Vector3f> roomScan(std::mt19937& rng, bool with_clutter) {
+  std::vector<Eigen::Vector3f> pts;
+  const double noise = 0.01;
+  addPatch(pts, {{-3, -2, -0.6}, {7, 0, 0}, {0, 4.5, 0}, 0.08}, rng, noise);   // floor (largest)
+  addPatch(pts, {{-3, -2, 2.4}, {7, 0, 0}, {0, 4.5, 0}, 0.2}, rng, noise);     // ceiling (sparse)
+  addPatch(pts, {{4, -2, -0.6}, {0, 4.5, 0}, {0, 0, 3.0}, 0.07}, rng, noise);  // wall x = 4
+  addPatch(pts, {{-3, -2, -0.6}, {0, 4.5, 0}, {0, 0, 3.0}, 0.12}, rng, noise); // wall x = -3
+  addPatch(pts, {{-3, -2, -0.6}, {7, 0, 0}, {0, 0, 3.0}, 0.1}, rng, noise);    // wall y = -2
+  addPatch(pts, {{-3, 2.5, -0.6}, {7, 0, 0}, {0, 0, 3.0}, 0.15}, rng, noise);  // wall y = 2.5
+  if (with_clutter) {
+    addPatch(pts, {{1.0, 0.5, -0.3}, {0.7, 0, 0}, {0, 0.5, 0}, 0.012}, rng, noise);  // table top
+    std::uniform_real_distribution<double> u(-1.5, 1.5);
+    for (int i = 0; i < 1500; ++i) pts.push_back(Eigen::Vector3f(u(rng), u(rng), u(rng) * 0.5));
+  }
+  return pts;
+}
+
+bool near(const DetectedPlane& p, const Eigen::Vector3d& n, double d, double angle_deg, double dist) {
+  return p.plane.normal().dot(n) > std::cos(angle_deg * M_PI / 180.0) && std::abs(p.plane.distance() - d) < dist;
+}
+
+TEST(SrpExtraction, FindsTheLargestOrthogonalPlanesOfARoom) {
+  std::mt19937 rng(1);
+  const auto pts = roomScan(rng, true);
+  SrpExtractionConfig config;
+  const SrpExtractionResult r = extractSrps(pts, config);
+  ASSERT_EQ(r.srps.size(), 3u);
+  // Fixture property: the floor has the most points, then wall x = 4, then wall y = -2.
+  EXPECT_TRUE(near(r.srps[0], {0, 0, -1}, 0.6, 0.5, 0.01));
+  EXPECT_TRUE(near(r.srps[1], {1, 0, 0}, 4.0, 0.5, 0.01));
+  EXPECT_TRUE(near(r.srps[2], {0, -1, 0}, 2.0, 0.5, 0.01));
+  for (const DetectedPlane& p : r.srps) {
+    EXPECT_GE(p.points, config.min_points);
+    EXPECT_LT(p.rms, 0.02);
+    // Fit uncertainty: positive definite, normal std below 0.2 deg, distance std below 1 cm.
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(p.covariance);
+    EXPECT_GT(eig.eigenvalues().minCoeff(), 0.0);
+    EXPECT_LT(std::sqrt(p.covariance(0, 0)), 0.2 * M_PI / 180.0);
+    EXPECT_LT(std::sqrt(p.covariance(2, 2)), 0.01);
+  }
+  for (std::size_t i = 1; i < r.srps.size(); ++i)
+    EXPECT_GE(r.srps[i - 1].points, r.srps[i].points);
+  // The table top (d = 0.3, level) is never an SRP, and the parallel walls and
+  // the ceiling were not taken beside the floor and the first walls.
+  for (const DetectedPlane& p : r.srps) EXPECT_FALSE(near(p, {0, 0, -1}, 0.3, 5, 0.1));
+  EXPECT_GE(r.rejects[static_cast<int>(PlaneReject::kNotOrthogonal)], 1);
+}
+
+TEST(SrpExtraction, DenseClutterIsTooSmall) {
+  std::mt19937 rng(2);
+  std::vector<Eigen::Vector3f> pts;
+  // Only a dense 0.7 x 0.5 m table top (about 2400 points) and a small box side.
+  addPatch(pts, {{1.0, 0.5, -0.3}, {0.7, 0, 0}, {0, 0.5, 0}, 0.012}, rng, 0.005);
+  addPatch(pts, {{1.0, 0.5, -0.3}, {0, 0.5, 0}, {0, 0, 0.4}, 0.012}, rng, 0.005);
+  ASSERT_GT(pts.size(), 2000u);  // fixture: far more points than min_points
+  const SrpExtractionResult r = extractSrps(pts, SrpExtractionConfig{});
+  EXPECT_TRUE(r.srps.empty());
+  EXPECT_GE(r.rejects[static_cast<int>(PlaneReject::kTooSmall)], 1);
+}
+
+TEST(SrpExtraction, FewPointsGiveNoSrp) {
+  std::mt19937 rng(4);
+  std::vector<Eigen::Vector3f> pts;
+  addPatch(pts, {{-3, -2, -0.6}, {7, 0, 0}, {0, 4.5, 0}, 0.5}, rng, 0.01);  // ~150 floor points
+  EXPECT_TRUE(extractSrps(pts, SrpExtractionConfig{}).srps.empty());
+}
+
+TEST(SrpExtraction, IsDeterministic) {
+  std::mt19937 rng(1);
+  const auto pts = roomScan(rng, true);
+  const SrpExtractionResult a = extractSrps(pts, SrpExtractionConfig{});
+  const SrpExtractionResult b = extractSrps(pts, SrpExtractionConfig{});
+  ASSERT_EQ(a.srps.size(), b.srps.size());
+  for (std::size_t i = 0; i < a.srps.size(); ++i) {
+    EXPECT_EQ(a.srps[i].points, b.srps[i].points);
+    EXPECT_EQ(a.srps[i].plane.distance(), b.srps[i].plane.distance());
+  }
+}
+
+TEST(FitPlane, RecoversAKnownPlaneAndItsUncertaintyShrinksWithExtent) {
+  std::mt19937 rng(9);
+  std::normal_distribution<double> g(0.0, 0.02);
+  SrpExtractionConfig config;
+  auto make = [&](double size) {
+    std::vector<Eigen::Vector3d> pts;
+    for (int i = 0; i < 400; ++i) {
+      const double a = size * (i % 20) / 19.0, b = size * (i / 20) / 19.0;
+      pts.push_back(Eigen::Vector3d(a, b, 0.0) + Eigen::Vector3d(0, 0, -1.5 + g(rng)));
+    }
+    return fitPlane(pts, config);
+  };
+  const DetectedPlane small = make(1.0), large = make(4.0);
+  EXPECT_NEAR(small.plane.distance(), 1.5, 0.01);
+  EXPECT_GT(small.plane.normal().dot(Eigen::Vector3d(0, 0, -1)), std::cos(1.0 * M_PI / 180));
+  EXPECT_GT(small.covariance(0, 0), 4.0 * large.covariance(0, 0));
+}
+
+}  // namespace
+}  // namespace storey::backend

@@ -1,0 +1,130 @@
+// Map assembly: per-scan and global voxel downsampling, attributes, poses.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "common/error.h"
+#include "map/map_builder.h"
+
+namespace storey {
+namespace {
+
+ScanPoint point(float x, float y, float z, float intensity, float time) {
+  ScanPoint p;
+  p.p = Eigen::Vector3f(x, y, z);
+  p.intensity = intensity;
+  p.time = time;
+  return p;
+}
+
+Scan makeScan(std::int64_t stamp_ns, std::vector<ScanPoint> points) {
+  Scan scan;
+  scan.stamp_ns = stamp_ns;
+  scan.points = std::move(points);
+  return scan;
+}
+
+class MapBuilderTest : public ::testing::TestWithParam<bool> {};
+
+TEST_P(MapBuilderTest, VoxelCentroidIntensityMeanFirstTimeAndKeyframe) {
+  MapConfig config;
+  config.voxel_size = 0.1;
+  config.spill_to_disk = GetParam();
+  MapBuilder builder(config);
+  // Keyframe 0: two points in one voxel, one in another.
+  builder.addKeyframeScan(0, makeScan(1'000'000'000, {point(1.01f, 0.01f, 0.01f, 10, 0.02f),
+                                                      point(1.03f, 0.03f, 0.03f, 20, -0.01f),
+                                                      point(2.05f, 0.05f, 0.05f, 5, 0.0f)}));
+  // Keyframe 3 (indices need not be contiguous), sensor moved +1 m in x: its
+  // point (0.02, 0.02, 0.02) lands in the first voxel in the world.
+  builder.addKeyframeScan(3, makeScan(2'000'000'000, {point(0.05f, 0.05f, 0.05f, 40, 0.0f)}));
+  EXPECT_EQ(builder.stats().keyframes, 2);
+  EXPECT_EQ(builder.stats().points_in, 4);
+  EXPECT_EQ(builder.stats().points_stored, 3);  // per-scan voxels: 2 + 1
+
+  std::vector<Pose> poses(4);
+  poses[3] = Pose(Eigen::Quaterniond::Identity(), Eigen::Vector3d(1.0, 0.0, 0.0));
+  const MapCloud map = builder.build(poses);
+  ASSERT_EQ(map.size(), 2u);
+  // Fixture check: the first voxel got points of both keyframes.
+  const Eigen::Vector3f first = map.positions[0];
+  // Keyframe 0's voxel centroid (1.02, .02, .02) averaged with (1.05, .05, .05).
+  EXPECT_NEAR(first.x(), (1.02 + 1.05) / 2, 1e-5);
+  EXPECT_NEAR(first.z(), (0.02 + 0.05) / 2, 1e-5);
+  EXPECT_NEAR(map.intensity[0], (15.0 + 40.0) / 2, 1e-4);  // mean of the per-scan means
+  EXPECT_NEAR(map.time[0], 1.0 - 0.01, 1e-9);  // first keyframe's earliest point, absolute
+  EXPECT_EQ(map.keyframe[0], 0);
+  EXPECT_EQ(map.storey[0], kNoStorey);
+  EXPECT_EQ(map.flags[0], 0);
+  EXPECT_NEAR(map.positions[1].x(), 2.05, 1e-5);
+  EXPECT_NEAR(map.intensity[1], 5.0, 1e-6);
+}
+
+TEST_P(MapBuilderTest, PosesAreAppliedAtBuildTimeAndCanChange) {
+  MapConfig config;
+  config.voxel_size = 0.02;
+  config.spill_to_disk = GetParam();
+  MapBuilder builder(config);
+  builder.addKeyframeScan(0, makeScan(0, {point(1.0f, 0.0f, 0.0f, 1, 0)}));
+  const Pose yaw90(Eigen::Quaterniond(Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitZ())),
+                   Eigen::Vector3d(0.0, 0.0, 2.0));
+  MapCloud map = builder.build({yaw90});
+  ASSERT_EQ(map.size(), 1u);
+  EXPECT_NEAR(map.positions[0].x(), 0.0, 0.011);
+  EXPECT_NEAR(map.positions[0].y(), 1.0, 0.011);
+  EXPECT_NEAR(map.positions[0].z(), 2.0, 0.011);
+  map = builder.build({Pose()});
+  EXPECT_NEAR(map.positions[0].x(), 1.0, 0.011);
+  // Adding after a build keeps working (the store is appended to).
+  builder.addKeyframeScan(1, makeScan(0, {point(5.0f, 0.0f, 0.0f, 1, 0)}));
+  map = builder.build({Pose(), Pose()});
+  ASSERT_EQ(map.size(), 2u);
+  EXPECT_NEAR(map.positions[1].x(), 5.0, 0.011);
+}
+
+TEST_P(MapBuilderTest, DropsFarAndNonFinitePointsAndRejectsBadInput) {
+  MapConfig config;
+  config.max_range = 10.0;
+  config.spill_to_disk = GetParam();
+  MapBuilder builder(config);
+  builder.addKeyframeScan(
+      0, makeScan(0, {point(11.0f, 0, 0, 1, 0), point(NAN, 0, 0, 1, 0), point(9.0f, 0, 0, 1, 0)}));
+  EXPECT_EQ(builder.stats().points_beyond_range, 1);
+  EXPECT_EQ(builder.stats().points_non_finite, 1);
+  EXPECT_EQ(builder.stats().points_stored, 1);
+  EXPECT_THROW(builder.addKeyframeScan(0, makeScan(0, {})), Error);   // twice
+  EXPECT_THROW(builder.addKeyframeScan(-1, makeScan(0, {})), Error);  // negative
+  builder.addKeyframeScan(5, makeScan(0, {}));
+  EXPECT_THROW(builder.build({Pose()}), Error);  // keyframe 5 has no pose
+  EXPECT_EQ(builder.build(std::vector<Pose>(6)).size(), 1u);
+  MapConfig bad;
+  bad.voxel_size = 0.0;
+  EXPECT_THROW(MapBuilder{bad}, Error);
+}
+
+TEST_P(MapBuilderTest, DenseSurfaceIsReducedToOnePointPerVoxel) {
+  // A 1 m x 1 m wall sampled every 5 mm from two keyframes -> about 50 x 50
+  // voxels of 2 cm in the map, whatever the number of scans.
+  MapConfig config;
+  config.spill_to_disk = GetParam();
+  MapBuilder builder(config);
+  for (int kf = 0; kf < 2; ++kf) {
+    std::vector<ScanPoint> points;
+    for (int i = 0; i < 200; ++i)
+      for (int j = 0; j < 200; ++j)
+        points.push_back(point(3.0f, 0.0025f + 0.005f * i, 0.0025f + 0.005f * j, 1, 0));
+    builder.addKeyframeScan(kf, makeScan(kf, points));
+  }
+  EXPECT_EQ(builder.stats().points_in, 80000);
+  EXPECT_LE(builder.stats().points_stored, 2 * 51 * 51 * 2);
+  const MapCloud map = builder.build({Pose(), Pose()});
+  EXPECT_GE(map.size(), 50u * 50u);
+  EXPECT_LE(map.size(), 51u * 51u * 2u);  // the plane x = 3 may straddle a voxel face
+  for (const Eigen::Vector3f& p : map.positions) EXPECT_NEAR(p.x(), 3.0, 1e-4);
+}
+
+INSTANTIATE_TEST_SUITE_P(Storage, MapBuilderTest, ::testing::Values(true, false),
+                         [](const auto& param_info) { return param_info.param ? "Disk" : "Memory"; });
+
+}  // namespace
+}  // namespace storey
