@@ -41,9 +41,9 @@ int runRun(const RunOptions& options) {
   std::cout << std::fixed << std::setprecision(3) << result.trajectory.size() << " scans, path "
             << drift.path_length << " m, end-point drift " << drift.dxyz << " m ("
             << std::setprecision(2) << drift.percent_of_path() << " % of the path)\n"
-            << "output: " << options.out_dir << " (odometry.tum, trajectory.tum, report.json)\n";
-  if (config.backend.srp)
-    std::cout << "note: the SRP back end is not implemented yet; trajectory.tum is the odometry\n";
+            << "output: " << options.out_dir << " (see report.json)\n";
+  if (!config.backend.srp)
+    std::cout << "note: SRP back end switched off; trajectory.tum is the odometry\n";
   return 0;
 }
 
