@@ -3,16 +3,10 @@
 #include <Eigen/Geometry>
 #include <cmath>
 
+#include "imu/so3.h"
+
 namespace storey {
-namespace {
-
-Eigen::Matrix3d skew(const Eigen::Vector3d& v) {
-  Eigen::Matrix3d m;
-  m << 0.0, -v.z(), v.y(), v.z(), 0.0, -v.x(), -v.y(), v.x(), 0.0;
-  return m;
-}
-
-}  // namespace
+using so3::skew;
 
 void worldPointJacobian(const double* pose, const Eigen::Vector3d& y_imu, Eigen::Vector3d& x_world,
                         Eigen::Matrix<double, 3, 7>* jacobian) {

@@ -1,6 +1,8 @@
 // `storey info LOG` run as a program: the table of a test-written Velodyne
 // bag, and a one-line error with exit status 1 on bad files.
 #include <gtest/gtest.h>
+
+#include "support/run_storey.h"
 #include <sys/wait.h>
 
 #include <array>
@@ -15,32 +17,9 @@
 namespace storey {
 namespace {
 
-struct RunResult {
-  int exit_code = -1;
-  std::string out;  ///< stdout
-  std::string err;  ///< stderr
-};
-
-std::string quoted(const std::string& s) {
-  return "'" + s + "'";
-}
-
-/// Runs `storey <args>` and captures its exit status, stdout and stderr.
-RunResult runStorey(const std::string& args, const std::string& dir) {
-  const std::string err_file = dir + "/stderr.txt";
-  const std::string command = quoted(STOREY_BINARY) + " " + args + " 2>" + quoted(err_file);
-  RunResult result;
-  FILE* pipe = ::popen(command.c_str(), "r");
-  if (pipe == nullptr) return result;
-  std::array<char, 4096> buffer;
-  std::size_t n;
-  while ((n = std::fread(buffer.data(), 1, buffer.size(), pipe)) > 0)
-    result.out.append(buffer.data(), n);
-  const int status = ::pclose(pipe);
-  result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  result.err = test::readFileBytes(err_file);
-  return result;
-}
+using test::RunResult;
+using test::runStorey;
+const auto quoted = test::shellQuoted;
 
 class InfoCli : public ::testing::Test {
  protected:

@@ -1,6 +1,8 @@
 // `storey eval` run as a program on files written by the test: the numbers of
 // its table and JSON, and a one-line error with exit status 1 on bad input.
 #include <gtest/gtest.h>
+
+#include "support/run_storey.h"
 #include <sys/wait.h>
 
 #include <array>
@@ -19,30 +21,9 @@ namespace {
 using test::eval::readText;
 using test::eval::writeText;
 
-struct RunResult {
-  int exit_code = -1;
-  std::string out, err;
-};
-
-std::string quoted(const std::string& s) {
-  return "'" + s + "'";
-}
-
-RunResult runStorey(const std::string& args, const std::string& dir) {
-  const std::string err_file = dir + "/stderr.txt";
-  const std::string command = quoted(STOREY_BINARY) + " " + args + " 2>" + quoted(err_file);
-  RunResult result;
-  FILE* pipe = ::popen(command.c_str(), "r");
-  if (pipe == nullptr) return result;
-  std::array<char, 4096> buffer;
-  std::size_t n;
-  while ((n = std::fread(buffer.data(), 1, buffer.size(), pipe)) > 0)
-    result.out.append(buffer.data(), n);
-  const int status = ::pclose(pipe);
-  result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  result.err = readText(err_file);
-  return result;
-}
+using test::RunResult;
+using test::runStorey;
+const auto quoted = test::shellQuoted;
 
 /// The line of `text` that starts (after blanks) with `first_word`.
 std::string lineStartingWith(const std::string& text, const std::string& first_word) {
