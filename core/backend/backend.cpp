@@ -4,6 +4,7 @@
 #include <cmath>
 #include <nlohmann/json.hpp>
 
+#include "backend/keyframe_rule.h"
 #include "backend/plane_graph.h"
 #include "common/error.h"
 
@@ -16,22 +17,18 @@ double msSince(Clock::time_point t) {
   return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
 }
 
-/// Roll and pitch (ZYX convention) of a rotation [rad].
-std::pair<double, double> rollPitch(const Eigen::Quaterniond& q) {
-  const Eigen::Matrix3d R = q.toRotationMatrix();
-  const double pitch = std::asin(std::clamp(-R(2, 0), -1.0, 1.0));
-  const double roll = std::atan2(R(2, 1), R(2, 2));
-  return {roll, pitch};
-}
-
-double wrapAngle(double a) { return std::atan2(std::sin(a), std::cos(a)); }
-
 Pose interpolate(const Pose& a, const Pose& b, double alpha) {
   return Pose(a.rotation().slerp(alpha, b.rotation()),
               (1.0 - alpha) * a.translation() + alpha * b.translation());
 }
 
 nlohmann::json vec(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
+
+nlohmann::json hull(const std::vector<Eigen::Vector3d>& vertices) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const Eigen::Vector3d& v : vertices) out.push_back(vec(v));
+  return out;
+}
 
 }  // namespace
 
@@ -49,6 +46,8 @@ struct SrpBackend::Impl {
   struct ObservationRecord {
     int keyframe, plane, graph_index;
     Plane plane_keyframe;  // as observed (Hesse form)
+    Eigen::Vector3d centroid;            // of the inliers, keyframe frame
+    std::vector<Eigen::Vector3d> hull;   // outline on the plane, keyframe frame
     int points;
     double rms;
     double chi2_at_match;
@@ -71,15 +70,7 @@ struct SrpBackend::Impl {
 
   bool isKeyframe(const Pose& T_current, double time) const {
     if (kfs.empty()) return true;
-    const double max_interval = config.backend.keyframes.max_interval;
-    if (max_interval > 0 && time - kfs.back().time >= max_interval) return true;
-    const Pose last = A * kfs.back().U;
-    if ((T_current.translation() - last.translation()).norm() > config.backend.keyframes.distance)
-      return true;
-    const auto [r0, p0] = rollPitch(last.rotation());
-    const auto [r1, p1] = rollPitch(T_current.rotation());
-    const double limit = config.backend.keyframes.pitch_roll_deg * M_PI / 180.0;
-    return std::abs(wrapAngle(r1 - r0)) > limit || std::abs(wrapAngle(p1 - p0)) > limit;
+    return isNewKeyframe(config.backend.keyframes, A * kfs.back().U, kfs.back().time, T_current, time);
   }
 
   Eigen::Matrix<double, 6, 6> odometryInformation(const Pose& T_a_b) const {
@@ -155,7 +146,8 @@ struct SrpBackend::Impl {
                                       gc.plane_sigma_distance * gc.plane_sigma_distance);
       const int o = graph.addObservation(kf_graph, plane, srp.plane.normal(), srp.plane.distance(),
                                          srp.covariance + Eigen::Matrix3d(model_var.asDiagonal()));
-      observations.push_back({kf_index, plane, o, srp.plane, srp.points, srp.rms, a.chi2});
+      observations.push_back(
+          {kf_index, plane, o, srp.plane, srp.centroid, srp.hull, srp.points, srp.rms, a.chi2});
       last_seen_kf[static_cast<std::size_t>(plane)] = kf_index;
     }
     stats.ms_association.push_back(msSince(t));
@@ -328,6 +320,8 @@ std::string SrpBackend::planesJson() const {
          {"time", m.kfs[static_cast<std::size_t>(o.keyframe)].time},
          {"normal", vec(o.plane_keyframe.normal())},
          {"distance", o.plane_keyframe.distance()},
+         {"centroid", vec(o.centroid)},
+         {"hull", hull(o.hull)},
          {"points", o.points},
          {"fit_rms_m", o.rms},
          {"residual_chi2", chi2},
@@ -351,7 +345,8 @@ std::string SrpBackend::planesJson() const {
       {"convention",
        "Hesse normal form n . x = d, |n| = 1, d >= 0, metres; `facing` points from the plane to "
        "the side it was seen from; observations are in the keyframe's LiDAR frame (keyframe = "
-       "index into keyframes.tum), residual_chi2 is the whitened squared residual after the "
+       "index into keyframes.tum; centroid of the inliers; hull = their convex outline on the "
+       "plane, counter-clockwise seen from the normal's side), residual_chi2 is the whitened squared residual after the "
        "final optimisation (3 dof)"},
       {"keyframes", m.kfs.size()},
       {"planes", planes}};

@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <unordered_set>
 
+#include "backend/plane_hull.h"
 #include "backend/plane_math.h"
 
 namespace storey::backend {
@@ -187,6 +188,7 @@ SrpExtractionResult extractSrps(const std::vector<Eigen::Vector3f>& all_points,
       ++result.rejects[static_cast<int>(PlaneReject::kTooSmall)];
       continue;
     }
+    plane.hull = planeHull(inliers, plane.plane);
     accepted.push_back(plane);
   }
   result.explained_fraction =

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "backend/backend.h"
 #include "common/error.h"
 #include "config/sensor_yaml.h"
 #include "config/yaml_section.h"
@@ -163,6 +164,9 @@ void visitBackend(V& v, BackendConfig& c) {
 
 template <typename V>
 void visitMap(V& v, MapConfig& c) {
+  v.field("enabled", c.enabled);
+  v.field("scan_spacing", c.scan_spacing);
+  v.field("scan_angle_deg", c.scan_angle_deg);
   v.field("voxel_size", c.voxel_size);
   v.field("max_range", c.max_range);
   v.field("spill_to_disk", c.spill_to_disk);
@@ -170,6 +174,7 @@ void visitMap(V& v, MapConfig& c) {
 
 template <typename V>
 void visitStoreys(V& v, StoreysConfig& c) {
+  v.field("enabled", c.enabled);
   v.field("voxel_size", c.voxel_size);
   v.field("normal_neighbours", c.normal_neighbours);
   v.field("plane_distance", c.plane_distance);
@@ -362,8 +367,11 @@ void Config::validate() const {
   } catch (const Error& e) {
     throw Error(std::string("in section 'odometry.preintegration': ") + e.what());
   }
+  require(map.scan_spacing > 0.0, "map.scan_spacing", "must be positive");
+  require(map.scan_angle_deg > 0.0, "map.scan_angle_deg", "must be positive");
   require(map.voxel_size > 0.0, "map.voxel_size", "must be positive");
   require(map.max_range > 0.0, "map.max_range", "must be positive");
+  validateBackendConfig(backend);
   validateStoreysConfig(storeys);
 }
 

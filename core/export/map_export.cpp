@@ -135,16 +135,21 @@ MapOutputs buildAndExportMap(const MapBuilder& builder,
           std::to_string(outputs.build.keyframes) + " keyframes");
 
   t0 = std::chrono::steady_clock::now();
-  std::vector<Eigen::Vector3d> positions;
-  positions.reserve(T_world_lidar_per_keyframe.size());
-  for (const Pose& T : T_world_lidar_per_keyframe) positions.push_back(T.translation());
-  const StoreySegmentation segmentation = segmentStoreys(map, positions, storeys_config, progress);
+  StoreySegmentation segmentation;
+  if (storeys_config.enabled) {
+    std::vector<Eigen::Vector3d> positions;
+    positions.reserve(T_world_lidar_per_keyframe.size());
+    for (const Pose& T : T_world_lidar_per_keyframe) positions.push_back(T.translation());
+    segmentation = segmentStoreys(map, positions, storeys_config, progress);
+    if (segmentation.storeys.empty())
+      logWarning("storeys: no floor slab of at least " +
+                 std::to_string(storeys_config.min_floor_area) + " m^2 found; no storeys");
+  } else {
+    logInfo("storeys: segmentation switched off (storeys.enabled: false)");
+  }
   outputs.seconds_storeys = secondsSince(t0);
   outputs.storeys = segmentation.storeys;
   outputs.segmentation = segmentation.stats;
-  if (segmentation.storeys.empty())
-    logWarning("storeys: no floor slab of at least " +
-               std::to_string(storeys_config.min_floor_area) + " m^2 found; no storeys");
   for (const StoreyInfo& s : segmentation.storeys) {
     char line[160];
     std::snprintf(line, sizeof(line), "storey %d: floor %.3f m, footprint %.1f m^2, %zu points",
@@ -155,6 +160,7 @@ MapOutputs buildAndExportMap(const MapBuilder& builder,
   t0 = std::chrono::steady_clock::now();
   outputs.files = exportMap(map, segmentation, outputs.map_voxel_size, out_dir, progress);
   outputs.seconds_export = secondsSince(t0);
+  outputs.map = std::make_shared<MapCloud>(std::move(map));
   return outputs;
 }
 

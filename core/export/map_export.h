@@ -12,6 +12,7 @@
 /// segmenting fails. The run report (report.json/report.md) and the
 /// trajectories stay with the pipeline: addMapToReport(), writeReportMarkdown()
 /// and writeKitti() are its helpers.
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -22,6 +23,7 @@
 namespace storey {
 
 struct MapOutputs {
+  std::shared_ptr<MapCloud> map;    ///< the built map, labelled with storeys
   std::vector<std::string> files;   ///< written, relative to out_dir
   std::vector<StoreyInfo> storeys;  ///< the storey table, bottom up
   StoreySegmentationStats segmentation;
@@ -31,8 +33,10 @@ struct MapOutputs {
   double seconds_build = 0.0, seconds_storeys = 0.0, seconds_export = 0.0;  ///< wall time [s]
 };
 
-/// build() + segmentStoreys() + exportMap(). Poses are indexed by keyframe
-/// index (the indices given to MapBuilder::addKeyframeScan). Throws storey::Error.
+/// build() + segmentStoreys() (skipped when storeys_config.enabled is false:
+/// every point keeps kNoStorey and storeys.json lists none) + exportMap().
+/// Poses are indexed by keyframe index (the indices given to
+/// MapBuilder::addKeyframeScan). Throws storey::Error.
 MapOutputs buildAndExportMap(const MapBuilder& builder,
                              const std::vector<Pose>& T_world_lidar_per_keyframe,
                              const StoreysConfig& storeys_config, const std::string& out_dir,

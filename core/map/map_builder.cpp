@@ -69,7 +69,7 @@ std::vector<int> MapBuilder::keyframes() const {
   return out;
 }
 
-void MapBuilder::addKeyframeScan(int keyframe, const Scan& scan) {
+void MapBuilder::addKeyframeScan(int keyframe, const Scan& scan, int label) {
   if (keyframe < 0) throw Error("map: keyframe index must be >= 0, got " + std::to_string(keyframe));
   if (static_cast<std::size_t>(keyframe) >= entry_of_keyframe_.size())
     entry_of_keyframe_.resize(static_cast<std::size_t>(keyframe) + 1, -1);
@@ -123,6 +123,7 @@ void MapBuilder::addKeyframeScan(int keyframe, const Scan& scan) {
 
   Entry entry;
   entry.keyframe = keyframe;
+  entry.label = label >= 0 ? label : keyframe;
   entry.stamp_ns = scan.stamp_ns;
   entry.offset = stored_points_;
   entry.count = points.size();
@@ -195,7 +196,7 @@ MapCloud MapBuilder::build(const std::vector<Pose>& T_world_lidar_per_keyframe,
       bool inserted = false;
       const std::uint32_t v = index.findOrInsert(key, inserted);
       if (inserted) {
-        acc.push_back({local.x(), local.y(), local.z(), sp.intensity, 1, entry.keyframe,
+        acc.push_back({local.x(), local.y(), local.z(), sp.intensity, 1, entry.label,
                        stamp + static_cast<double>(sp.dt)});
         keys.push_back(key);
       } else {

@@ -48,11 +48,14 @@ class MapBuilder {
   /// Adds the deskewed scan of keyframe `keyframe` (>= 0; LiDAR frame at the
   /// scan's reference time, per-point time relative to scan.stamp_ns). Each
   /// keyframe index may be added once; indices need not be contiguous.
-  void addKeyframeScan(int keyframe, const Scan& deskewed_lidar);
+  /// `label` (default: `keyframe`) is what build() puts in MapCloud::keyframe
+  /// for the points of this scan (the pipeline: the graph keyframe whose part
+  /// of the walk the scan belongs to).
+  void addKeyframeScan(int keyframe, const Scan& deskewed_lidar, int label = -1);
 
   /// Places every keyframe scan at T_world_lidar_per_keyframe[keyframe] and
   /// merges them into voxels of MapConfig::voxel_size (position and intensity
-  /// averaged; time and keyframe of the voxel's first return). Storeys are
+  /// averaged; time and keyframe label of the voxel's first return). Storeys are
   /// kNoStorey and flags 0 (the storey stage labels them). Throws
   /// storey::Error when a keyframe has no pose. Can be called again with other poses.
   MapCloud build(const std::vector<Pose>& T_world_lidar_per_keyframe,
@@ -71,6 +74,7 @@ class MapBuilder {
   };
   struct Entry {
     int keyframe = 0;
+    int label = 0;  ///< MapCloud::keyframe of its points
     std::int64_t stamp_ns = 0;
     std::uint64_t offset = 0;  ///< into the store, in points
     std::uint64_t count = 0;

@@ -7,6 +7,7 @@
 namespace storey {
 
 struct StoreysConfig {
+  bool enabled = true;           ///< split the map into storeys (off: one map, no storey files)
   double voxel_size = 0.08;      ///< the map is subsampled to this for plane detection [m, > 0]
   int normal_neighbours = 12;    ///< neighbours of the PCA normal and of region growing [>= 6]
   double plane_distance = 0.05;  ///< region growing: largest point-to-plane distance [m]

@@ -13,39 +13,26 @@
 #include "eval/evaluation.h"
 #include "pipeline/pipeline.h"
 #include "sim/simulator.h"
-#include "support/temp_dir.h"
+#include "support/tiny_simulation.h"
 #include "trajectory/drift.h"
 #include "types/plane.h"
 
 namespace storey {
 namespace {
 
-class BackendTiny : public ::testing::Test {
+class BackendTiny : public test::TinySimulation {
  protected:
-  static void SetUpTestSuite() {
-    dir_ = new test::TempDir();
-    sim::SimulationOptions options;
-    options.threads = 2;
-    sim::simulate(sim::loadBuildingSpec("tiny"), options, dir_->file("sim"));
-  }
-  static void TearDownTestSuite() {
-    delete dir_;
-    dir_ = nullptr;
-  }
   static Config config(bool srp) {
-    Config c;
-    applyCalibrationFile(c, dir_->file("sim/") + sim::kCalibrationFile);
+    Config c = simConfig();
     c.backend.srp = srp;
     return c;
   }
-  static test::TempDir* dir_;
 };
-test::TempDir* BackendTiny::dir_ = nullptr;
 
 TEST_F(BackendTiny, OptimisedTrajectoryIsAccurateAndOutputsAreComplete) {
-  const std::string out = dir_->file("out_srp");
-  const PipelineResult r = runPipeline(dir_->file("sim/simulation.bag"), config(true), out);
-  const Trajectory gt = readTum(dir_->file("sim/") + sim::kLidarTruthFile);
+  const std::string out = file("out_srp");
+  const PipelineResult r = runPipeline(bag(), config(true), out);
+  const Trajectory gt = readTum(simFile(sim::kLidarTruthFile));
   ASSERT_EQ(r.trajectory.size(), r.odometry.size());
 
   const eval::TrajectoryEvaluation e = eval::evaluateTrajectory(gt, r.trajectory);
@@ -136,8 +123,8 @@ TEST_F(BackendTiny, OptimisedTrajectoryIsAccurateAndOutputsAreComplete) {
 }
 
 TEST_F(BackendTiny, NoSrpKeepsTheOdometry) {
-  const std::string out = dir_->file("out_nosrp");
-  const PipelineResult r = runPipeline(dir_->file("sim/simulation.bag"), config(false), out);
+  const std::string out = file("out_nosrp");
+  const PipelineResult r = runPipeline(bag(), config(false), out);
   ASSERT_EQ(r.trajectory.size(), r.odometry.size());
   for (std::size_t i = 0; i < r.trajectory.size(); ++i)
     ASSERT_TRUE(r.trajectory[i].pose.isApprox(r.odometry[i].pose, 0.0, 0.0));

@@ -62,6 +62,16 @@ TEST(SrpExtraction, FindsTheLargestOrthogonalPlanesOfARoom) {
   EXPECT_TRUE(near(r.srps[0], {0, 0, -1}, 0.6, 0.5, 0.01));
   EXPECT_TRUE(near(r.srps[1], {1, 0, 0}, 4.0, 0.5, 0.01));
   EXPECT_TRUE(near(r.srps[2], {0, -1, 0}, 2.0, 0.5, 0.01));
+  // The floor's outline (planes.json "hull") spans the 7 m x 4.5 m floor, on the plane.
+  ASSERT_GE(r.srps[0].hull.size(), 4u);
+  Eigen::Vector3d lo = r.srps[0].hull[0], hi = lo;
+  for (const Eigen::Vector3d& v : r.srps[0].hull) {
+    EXPECT_NEAR(r.srps[0].plane.signedDistance(v), 0.0, 1e-9);
+    lo = lo.cwiseMin(v);
+    hi = hi.cwiseMax(v);
+  }
+  EXPECT_NEAR(hi.x() - lo.x(), 7.0, 0.2);
+  EXPECT_NEAR(hi.y() - lo.y(), 4.5, 0.2);
   for (const DetectedPlane& p : r.srps) {
     EXPECT_GE(p.points, config.min_points);
     EXPECT_LT(p.rms, 0.02);

@@ -1,56 +1,112 @@
-// End to end on the `tiny` preset: simulate, odometry (the pipeline's front-end
-// loop, tests/unit/map/map_dev.cpp, until runPipeline runs the map stage
-// itself), map from the keyframe scans at their poses, exports, then
-// core/eval: map-to-mesh distance and floor elevation against the truth.
+// End to end on the `tiny` preset through runPipeline (what `storey run`
+// does): simulate, odometry + back end, map from the keyframe scans at their
+// optimised poses, storeys, exports; then core/eval: map-to-mesh distance and
+// floor elevation against the simulator's truth. Also the switches: back end
+// off (keyframes from the odometry), storeys off, map off.
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <nlohmann/json.hpp>
 
-#include "common/log.h"
+#include "common/atomic_file.h"
 #include "config/calibration.h"
 #include "eval/evaluation.h"
 #include "eval/storey_error.h"
-#include "export/map_export.h"
-#include "map_dev.h"
+#include "pipeline/pipeline.h"
 #include "sim/simulator.h"
-#include "support/temp_dir.h"
+#include "support/tiny_simulation.h"
 
 namespace storey {
 namespace {
 
-TEST(MapEndToEnd, TinyPresetMapMatchesTheMeshAndTheFloor) {
-  test::TempDir dir;
-  const std::string sim_dir = dir.file("sim");
-  const std::string out = dir.file("out");
-  sim::simulate(sim::loadBuildingSpec("tiny"), {}, sim_dir);
-  Config config;
-  applyCalibrationFile(config, sim_dir + "/" + sim::kCalibrationFile);
-  const std::string bag = sim_dir + "/" + sim::kBagFile;
+namespace fs = std::filesystem;
 
-  MapBuilder builder(config.map);
-  const test::DevRun run = test::runOdometryIntoMap(bag, config, builder);
-  ASSERT_GE(run.keyframe_poses.size(), 5u);
+class MapEndToEnd : public test::TinySimulation {
+ protected:
+  static Config config() { return simConfig(); }
+};
 
-
-  const MapOutputs outputs = buildAndExportMap(builder, run.keyframe_poses, config.storeys, out);
-  EXPECT_GT(outputs.map_points, 10000u);
+TEST_F(MapEndToEnd, TinyPresetMapMatchesTheMeshAndTheFloor) {
+  const std::string out = file("out");
+  const PipelineResult r = runPipeline(bag(), config(), out);
+  ASSERT_TRUE(r.map);
+  ASSERT_GE(r.keyframes.size(), 5u);
+  EXPECT_GT(r.map->size(), 10000u);
   for (const char* f : {"map.las", "map.ply", "map.pcd", "storeys.json", "storeys/storey_00.las",
-                        "storeys/storey_00.ply"})
-    EXPECT_TRUE(std::filesystem::exists(out + "/" + f)) << f;
+                        "storeys/storey_00.ply", "trajectory.tum", "odometry.tum", "keyframes.tum",
+                        "trajectory_kitti.txt", "trajectory_kitti_times.txt", "planes.json",
+                        "report.json", "report.md"}) {
+    EXPECT_TRUE(fs::exists(out + "/" + f)) << f;
+    EXPECT_NE(std::find(r.files.begin(), r.files.end(), f), r.files.end()) << f << " listed";
+  }
+  // Every map point comes from a keyframe of keyframes.tum and has its storey.
+  for (std::size_t i = 0; i < r.map->size(); ++i) {
+    ASSERT_GE(r.map->keyframe[i], 0);
+    ASSERT_LT(r.map->keyframe[i], static_cast<int>(r.keyframes.size()));
+  }
+  EXPECT_EQ(readTum(out + "/keyframes.tum").size(), r.keyframes.size());
+  // The last scan is a keyframe (the end of the walk is in the map).
+  EXPECT_DOUBLE_EQ(r.keyframes.back().time, r.trajectory.back().time);
 
-  const eval::MapEvaluation map =
-      eval::evaluateMap(sim_dir + "/" + sim::kMeshFile, out + "/map.ply");
-  EXPECT_EQ(map.points, outputs.map_points);
+  const eval::MapEvaluation map = eval::evaluateMap(simFile(sim::kMeshFile), out + "/map.ply");
+  EXPECT_EQ(map.points, r.map->size());
   EXPECT_LT(map.distance.median, 0.03);
   RecordProperty("median_map_to_mesh_m", std::to_string(map.distance.median));
 
-  const auto truth = eval::readTrueStoreys(sim_dir + "/" + sim::kStoreysFile);
+  const auto truth = eval::readTrueStoreys(simFile(sim::kStoreysFile));
   const auto estimate = eval::readEstimatedStoreys(out + "/storeys.json");
   ASSERT_EQ(truth.size(), 1u);
   ASSERT_EQ(estimate.size(), 1u);
+  ASSERT_EQ(r.storeys.size(), 1u);
   const eval::StoreyComparison storeys = eval::compareStoreys(truth, estimate);
   EXPECT_EQ(storeys.missed, 0u);
   EXPECT_LT(storeys.max_abs_error, 0.05);
+
+  // The report has the map and storey sections and lists the files.
+  const auto report = nlohmann::json::parse(test::readText(out + "/report.json"));
+  EXPECT_EQ(report.at("map").at("points").get<std::size_t>(), r.map->size());
+  EXPECT_EQ(report.at("storeys").size(), 1u);
+  EXPECT_TRUE(report.contains("files"));
+  const std::string md = test::readText(out + "/report.md");
+  EXPECT_NE(md.find("Table I"), std::string::npos);
+  EXPECT_NE(md.find("Table II"), std::string::npos);
+
+  // planes.json observations carry the patch each keyframe saw.
+  const auto planes = nlohmann::json::parse(test::readText(out + "/planes.json"));
+  ASSERT_FALSE(planes.at("planes").empty());
+  for (const auto& p : planes.at("planes"))
+    for (const auto& o : p.at("observations")) {
+      EXPECT_GE(o.at("hull").size(), 3u);
+      EXPECT_EQ(o.at("centroid").size(), 3u);
+    }
+}
+
+TEST_F(MapEndToEnd, SwitchesBackEndOffStoreysOffAndMapOff) {
+  // Back end off: keyframes by the same rule on the odometry; no planes.json.
+  Config c = config();
+  c.backend.srp = false;
+  c.storeys.enabled = false;
+  const std::string out = file("out_nosrp");
+  fs::create_directories(out);
+  writeFileAtomically(out + "/planes.json", "{}\n");  // a previous run's
+  const PipelineResult r = runPipeline(bag(), c, out);
+  ASSERT_TRUE(r.map);
+  EXPECT_GE(r.keyframes.size(), 5u);
+  EXPECT_TRUE(r.planes_json.empty());
+  EXPECT_FALSE(fs::exists(out + "/planes.json")) << "a stale planes.json would be misleading";
+  EXPECT_TRUE(fs::exists(out + "/map.las"));
+  EXPECT_TRUE(r.storeys.empty());
+  for (std::size_t i = 0; i < r.map->size(); ++i) ASSERT_EQ(r.map->storey[i], kNoStorey);
+  EXPECT_FALSE(fs::exists(out + "/storeys/storey_00.las"));
+
+  // Map off: trajectories and report only.
+  c.map.enabled = false;
+  const std::string out2 = file("out_nomap");
+  const PipelineResult r2 = runPipeline(bag(), c, out2);
+  EXPECT_FALSE(r2.map);
+  EXPECT_TRUE(fs::exists(out2 + "/trajectory.tum"));
+  EXPECT_TRUE(fs::exists(out2 + "/report.md"));
+  EXPECT_FALSE(fs::exists(out2 + "/map.las"));
 }
 
 }  // namespace
