@@ -120,27 +120,25 @@ std::vector<std::string> exportMap(const MapCloud& map, const StoreySegmentation
 }
 
 MapOutputs buildAndExportMap(const MapBuilder& builder,
-                             const std::vector<Pose>& T_world_lidar_per_keyframe,
+                             const std::vector<Pose>& T_world_lidar_per_scan,
+                             const std::vector<Eigen::Vector3d>& sensor_position_per_label,
                              const StoreysConfig& storeys_config, const std::string& out_dir,
                              const ProgressFn& progress) {
   validateStoreysConfig(storeys_config);
   MapOutputs outputs;
   auto t0 = std::chrono::steady_clock::now();
-  MapCloud map = builder.build(T_world_lidar_per_keyframe, progress);
+  MapCloud map = builder.build(T_world_lidar_per_scan, progress);
   outputs.seconds_build = secondsSince(t0);
   outputs.build = builder.stats();
   outputs.map_points = map.size();
   outputs.map_voxel_size = builder.config().voxel_size;
   logInfo("map: " + std::to_string(map.size()) + " points from " +
-          std::to_string(outputs.build.keyframes) + " keyframes");
+          std::to_string(outputs.build.keyframes) + " scans");
 
   t0 = std::chrono::steady_clock::now();
   StoreySegmentation segmentation;
   if (storeys_config.enabled) {
-    std::vector<Eigen::Vector3d> positions;
-    positions.reserve(T_world_lidar_per_keyframe.size());
-    for (const Pose& T : T_world_lidar_per_keyframe) positions.push_back(T.translation());
-    segmentation = segmentStoreys(map, positions, storeys_config, progress);
+    segmentation = segmentStoreys(map, sensor_position_per_label, storeys_config, progress);
     if (segmentation.storeys.empty())
       logWarning("storeys: no floor slab of at least " +
                  std::to_string(storeys_config.min_floor_area) + " m^2 found; no storeys");

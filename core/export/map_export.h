@@ -35,10 +35,13 @@ struct MapOutputs {
 
 /// build() + segmentStoreys() (skipped when storeys_config.enabled is false:
 /// every point keeps kNoStorey and storeys.json lists none) + exportMap().
-/// Poses are indexed by keyframe index (the indices given to
-/// MapBuilder::addKeyframeScan). Throws storey::Error.
+/// `T_world_lidar_per_scan` is indexed by the scan indices given to
+/// MapBuilder::addKeyframeScan; `sensor_position_per_label` (world position of
+/// the LiDAR per MapCloud::keyframe label: the keyframes) orients the normals
+/// and locates the stairs. Throws storey::Error.
 MapOutputs buildAndExportMap(const MapBuilder& builder,
-                             const std::vector<Pose>& T_world_lidar_per_keyframe,
+                             const std::vector<Pose>& T_world_lidar_per_scan,
+                             const std::vector<Eigen::Vector3d>& sensor_position_per_label,
                              const StoreysConfig& storeys_config, const std::string& out_dir,
                              const ProgressFn& progress = {});
 

@@ -150,8 +150,10 @@ PipelineResult runPipeline(const std::string& log_path, const Config& config,
     T_world_lidar_per_map_scan.reserve(map_scan_index.size());
     for (std::size_t s : map_scan_index)
       T_world_lidar_per_map_scan.push_back(result.trajectory[s].pose);
-    MapOutputs outputs =
-        buildAndExportMap(*map, T_world_lidar_per_map_scan, config.storeys, out_dir, progress);
+    std::vector<Eigen::Vector3d> keyframe_positions;  // MapCloud::keyframe labels = keyframes
+    for (const StampedPose& k : result.keyframes) keyframe_positions.push_back(k.pose.translation());
+    MapOutputs outputs = buildAndExportMap(*map, T_world_lidar_per_map_scan, keyframe_positions,
+                                           config.storeys, out_dir, progress);
     map.reset();  // the keyframe scan store is no longer needed
     result.map = outputs.map;
     result.storeys = outputs.storeys;
