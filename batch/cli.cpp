@@ -46,6 +46,8 @@ int main(int argc, char** argv) {
                       "input log: ROS1 bag, Velodyne pcap (+ --imu-csv) or PCD folder (+ --imu-csv)");
   run_cmd->add_option("-o,--out", run.out_dir, "output folder")->capture_default_str();
   run_cmd->add_flag("--no-srp", run.no_srp, "switch the SRP back end off (odometry only)");
+  run_cmd->add_flag("--no-render", run.no_render,
+                    "no PNG renders at the end (render them later with `storey render OUT`)");
   run_cmd->add_option("--preset", run.preset,
                       "without LOG: the simulated building to map (tiny, default, building-a, "
                       "building-b)")
@@ -60,7 +62,9 @@ int main(int argc, char** argv) {
 
   SimulateOptions simulate;
   auto* sim_cmd = app.add_subcommand(
-      "simulate", "simulate a multi-storey building walk: ROS1 bag (VLP-16 + IMU) with ground truth");
+      "simulate",
+      "simulate a multi-storey building walk: ROS1 bag and/or Velodyne pcap (VLP-16 + IMU) with "
+      "ground truth");
   sim_cmd->add_option("BUILDING", simulate.preset_or_spec,
                       "preset (tiny, default, building-a, building-b) or building spec YAML")
       ->capture_default_str();
@@ -77,6 +81,10 @@ int main(int argc, char** argv) {
   sim_cmd->add_option("--duration", simulate.max_duration, "stop the sensors after this time [s]");
   sim_cmd->add_option("--threads", simulate.threads, "ray-casting threads (0: all cores)")
       ->capture_default_str();
+  sim_cmd->add_flag("--pcap", simulate.pcap,
+                    "also write simulation.pcap (VLP-16 packets as VeloView records them) + imu.csv");
+  sim_cmd->add_flag_callback("--no-bag", [&simulate] { simulate.bag = false; },
+                             "no ROS1 bag (with --pcap)");
 
   EvalOptions eval;
   auto* eval_cmd = app.add_subcommand(
@@ -102,6 +110,23 @@ int main(int argc, char** argv) {
   auto* render_cmd =
       app.add_subcommand("render", "write PNG renders of a `storey run` output folder, off-screen");
   render_cmd->add_option("OUTDIR", render.out_dir, "output folder of storey run")->required();
+  render_cmd->add_option("-c,--config", render.config_path,
+                         "configuration file (YAML); its render: section is used");
+  render_cmd->add_option("--keyframe", render.keyframe,
+                         "keyframe of the SRP keyframe view (index into keyframes.tum; default: "
+                         "the one with the most SRPs)");
+  render_cmd->add_option("--gt", render.ground_truth,
+                         "ground-truth trajectory (TUM): adds estimated vs true trajectory views");
+  render_cmd->add_option("--compare", render.compare,
+                         "another run's output folder (e.g. its --no-srp run) drawn with --gt; "
+                         "repeatable");
+  render_cmd->add_option("--width", render.width, "image width [px] (default 1600)");
+  render_cmd->add_option("--height", render.height, "image height [px] (default 1000)");
+  render_cmd->add_option("--views", render.views,
+                         "images to write, comma-separated: elevation, storeys, srp, keyframe, "
+                         "trajectories, all (default: all)");
+  render_cmd->add_option("--max-points", render.max_points,
+                         "map points drawn at most (uniform subsample; default 2000000)");
 
   try {
     app.parse(argc, argv);

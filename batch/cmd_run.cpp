@@ -10,6 +10,7 @@
 #include "options_config.h"
 #include "pipeline/pipeline.h"
 #include "progress_bar.h"
+#include "render/render.h"
 #include "sim/simulator.h"
 #include "trajectory/drift.h"
 
@@ -18,7 +19,9 @@ namespace storey::cli {
 int runRun(const RunOptions& options) {
   Config config = configFromOptions(options.common);
   if (options.no_srp) config.backend.srp = false;
+  if (options.no_render) config.render.enabled = false;
   std::string log_path = options.log_path;
+  std::string ground_truth;  // the simulator's, when the built-in building is mapped
   if (log_path.empty()) {
     const std::string sim_dir = (std::filesystem::path(options.out_dir) / "simulation").string();
     std::cerr << "storey run: no LOG given: simulating the built-in building '" << options.preset
@@ -30,6 +33,7 @@ int runRun(const RunOptions& options) {
     std::cerr << "storey run: simulated " << sim.path_length << " m in " << sim.duration
               << " s, " << sim.scans << " scans\n";
     log_path = (std::filesystem::path(sim_dir) / sim::kBagFile).string();
+    ground_truth = (std::filesystem::path(sim_dir) / sim::kLidarTruthFile).string();
     // The simulated sensors' calibration, unless the user gave one.
     if (options.common.calibration_path.empty())
       applyCalibrationFile(config, (std::filesystem::path(sim_dir) / sim::kCalibrationFile).string());
@@ -44,6 +48,21 @@ int runRun(const RunOptions& options) {
             << "output: " << options.out_dir << " (see report.json)\n";
   if (!config.backend.srp)
     std::cout << "note: SRP back end switched off; trajectory.tum is the odometry\n";
+  if (config.render.enabled) {
+    // The SLAM outputs are written: a render failure is only a warning here.
+    try {
+      render::RenderRequest request;
+      request.out_dir = options.out_dir;
+      request.ground_truth = ground_truth;
+      const render::RenderSummary summary = render::renderRun(request, config.render);
+      std::cout << summary.images.size() << " renders in " << options.out_dir << "/renders ("
+                << std::setprecision(1) << summary.seconds << " s), report.html\n";
+    } catch (const std::exception& e) {
+      std::cerr << "storey run: warning: renders not written: " << e.what()
+                << " (the mapping outputs are complete; retry with `storey render "
+                << options.out_dir << "`)\n";
+    }
+  }
   return 0;
 }
 

@@ -1,4 +1,5 @@
-// `storey simulate`: a building spec (preset or YAML) -> ROS1 bag + ground truth.
+// `storey simulate`: a building spec (preset or YAML) -> ROS1 bag and/or Velodyne
+// pcap + IMU CSV, with ground truth.
 
 #include <algorithm>
 #include <iomanip>
@@ -25,6 +26,9 @@ int runSimulate(const SimulateOptions& options) {
   sim_options.compress = options.compress;
   sim_options.max_duration = options.max_duration.value_or(0.0);
   sim_options.threads = options.threads;
+  sim_options.formats.bag = options.bag;
+  sim_options.formats.pcap = options.pcap;
+  if (!options.bag && !options.pcap) throw Error("--no-bag needs --pcap (nothing would be written)");
   if (sim_options.max_duration < 0.0) throw Error("--duration must be positive");
   if (sim_options.threads < 0) throw Error("--threads must be 0 (all cores) or more");
   const sim::SimulationResult result = sim::simulate(
@@ -37,8 +41,9 @@ int runSimulate(const SimulateOptions& options) {
             << " m walked in " << result.duration << " s; " << result.scans << " scans, "
             << result.points << " points, " << result.imu_samples << " IMU samples; "
             << std::setprecision(1) << result.wall_time << " s wall time ("
-            << result.duration / std::max(result.wall_time, 1e-9) << "x real time)\n"
-            << "output: " << result.out_dir << '\n';
+            << result.duration / std::max(result.wall_time, 1e-9) << "x real time)\n";
+  if (options.pcap) std::cout << "Velodyne capture: " << result.pcap_packets << " data packets\n";
+  std::cout << "output: " << result.out_dir << '\n';
   return 0;
 }
 

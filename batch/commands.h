@@ -25,6 +25,7 @@ struct RunOptions {
   std::string out_dir = "storey_out";
   std::string preset = "default";  ///< building simulated when no log is given
   bool no_srp = false;
+  bool no_render = false;  ///< --no-render: no PNG renders at the end (render.enabled = false)
 };
 
 struct InfoOptions {
@@ -43,6 +44,8 @@ struct SimulateOptions {
   bool compress = true;                ///< --no-compress clears it: plain (not LZ4) bag chunks
   std::optional<double> max_duration;  ///< --duration: stop the sensors after this time [s]
   int threads = 0;                     ///< --threads: ray-casting threads, 0 = all cores
+  bool pcap = false;                   ///< --pcap: also a Velodyne capture + IMU CSV
+  bool bag = true;                     ///< --no-bag clears it: no ROS1 bag
 };
 
 struct EvalOptions {
@@ -55,7 +58,14 @@ struct EvalOptions {
 };
 
 struct RenderOptions {
-  std::string out_dir;
+  std::string out_dir;               ///< output folder of storey run
+  std::string config_path;           ///< -c/--config: its `render:` section is used
+  std::optional<int> keyframe;       ///< --keyframe: the keyframe view's keyframe
+  std::string ground_truth;          ///< --gt: true trajectory (TUM)
+  std::vector<std::string> compare;  ///< --compare: other run folders drawn with --gt
+  std::optional<int> width, height;  ///< --width/--height [px]
+  std::string views;                 ///< --views: comma-separated list; empty = config's
+  std::optional<int> max_points;     ///< --max-points: map points drawn at most
 };
 
 int runRun(const RunOptions& options);

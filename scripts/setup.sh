@@ -32,3 +32,8 @@ if [ ${#missing[@]} -gt 0 ]; then
 else
   echo "setup: all ${#PACKAGES[@]} Debian packages already installed"
 fi
+
+# CloudCompare plugin: Debian ships no CloudCompare headers, so they are taken
+# from its source package into build/third_party/ (never committed; about 20 s
+# the first time, instant afterwards). The plugin is built when they are there.
+"$(dirname "$0")/../plugin/fetch_cloudcompare_headers.sh"

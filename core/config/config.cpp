@@ -193,6 +193,27 @@ void visitStoreys(V& v, StoreysConfig& c) {
   v.field("footprint_alpha", c.footprint_alpha);
 }
 
+template <typename V>
+void visitRender(V& v, RenderConfig& c) {
+  v.field("enabled", c.enabled);
+  v.field("width", c.width);
+  v.field("height", c.height);
+  v.section("views", [&](auto& w) {
+    w.field("elevation", c.views.elevation);
+    w.field("storeys", c.views.storeys);
+    w.field("srp", c.views.srp);
+    w.field("keyframe", c.views.keyframe);
+    w.field("trajectories", c.views.trajectories);
+  });
+  v.field("max_display_points", c.max_display_points);
+  v.field("point_size", c.point_size);
+  v.field("line_width", c.line_width);
+  v.field("keyframe", c.keyframe);
+  v.field("keyframe_radius", c.keyframe_radius);
+  v.field("srp_point_distance", c.srp_point_distance);
+  v.field("ceiling_cut", c.ceiling_cut);
+}
+
 struct YamlReader {
   YamlSection& section_;
   template <typename T>
@@ -252,6 +273,7 @@ void applyConfigYaml(Config& config, const std::string& yaml_text, const std::st
   readSection(top, "backend", [&](auto& v) { visitBackend(v, result.backend); });
   readSection(top, "map", [&](auto& v) { visitMap(v, result.map); });
   readSection(top, "storeys", [&](auto& v) { visitStoreys(v, result.storeys); });
+  readSection(top, "render", [&](auto& v) { visitRender(v, result.render); });
   top.finish();
   try {
     result.validate();
@@ -282,6 +304,7 @@ std::string configToYaml(const Config& config) {
   writer.section("backend", [&](auto& v) { visitBackend(v, copy.backend); });
   writer.section("map", [&](auto& v) { visitMap(v, copy.map); });
   writer.section("storeys", [&](auto& v) { visitStoreys(v, copy.storeys); });
+  writer.section("render", [&](auto& v) { visitRender(v, copy.render); });
   out << YAML::EndMap;
   return std::string(out.c_str()) + "\n";
 }
@@ -296,6 +319,20 @@ namespace {
 
 void require(bool ok, const std::string& key, const std::string& what) {
   if (!ok) throw Error("key '" + key + "' " + what);
+}
+
+void validateRenderConfig(const RenderConfig& r) {
+  require(r.width >= 320 && r.width <= 8192, "render.width", "must be within [320, 8192] px");
+  require(r.height >= 240 && r.height <= 8192, "render.height", "must be within [240, 8192] px");
+  require(r.max_display_points >= 1000, "render.max_display_points", "must be >= 1000");
+  require(r.point_size > 0.0 && r.point_size <= 20.0, "render.point_size",
+          "must be within (0, 20] px");
+  require(r.line_width > 0.0 && r.line_width <= 20.0, "render.line_width",
+          "must be within (0, 20] px");
+  require(r.keyframe >= -1, "render.keyframe", "must be a keyframe index or -1 (automatic)");
+  require(r.keyframe_radius > 0.0, "render.keyframe_radius", "must be positive");
+  require(r.srp_point_distance > 0.0, "render.srp_point_distance", "must be positive");
+  require(r.ceiling_cut >= 0.0, "render.ceiling_cut", "must be >= 0");
 }
 
 }  // namespace
@@ -373,6 +410,7 @@ void Config::validate() const {
   require(map.max_range > 0.0, "map.max_range", "must be positive");
   validateBackendConfig(backend);
   validateStoreysConfig(storeys);
+  validateRenderConfig(render);
 }
 
 }  // namespace storey

@@ -53,7 +53,7 @@ void timingRows(std::ostringstream& md, const std::string& prefix, const Json& t
 
 }  // namespace
 
-std::string reportMarkdown(const std::string& report_json) {
+std::string reportMarkdown(const std::string& report_json, const std::vector<ReportImage>& images) {
   const Json report = Json::parse(report_json, nullptr, false);
   if (!report.is_object()) throw Error("report.md: the run report is not a JSON object");
   std::ostringstream md;
@@ -87,13 +87,17 @@ std::string reportMarkdown(const std::string& report_json) {
   }
 
   const Json* odometry_timing = find(report, {"odometry", "timing_ms"});
-  const Json* backend_timing = find(report, {"backend", "timing_ms"});
+  // Back end: per keyframe (SRP extraction, association, optimisation).
+  const Json* backend_timing = find(report, {"backend", "timing_ms_per_keyframe"});
   if (odometry_timing || backend_timing) {
     md << "## Table II: time per stage (ms)\n\n"
           "| stage | median | p95 | mean | max |\n|---|---:|---:|---:|---:|\n";
     if (odometry_timing) timingRows(md, "odometry: ", *odometry_timing);
-    if (backend_timing) timingRows(md, "back end: ", *backend_timing);
+    if (backend_timing) timingRows(md, "back end, per keyframe: ", *backend_timing);
     md << "\n";
+    if (backend_timing && backend_timing->contains("final_optimisation"))
+      md << "Final optimisation of the whole graph: "
+         << number(find(*backend_timing, {"final_optimisation"}), 1) << " ms.\n\n";
   }
   if (const Json* backend = find(report, {"backend", "status"}))
     md << "Back end: " << text(backend) << ".\n\n";
@@ -118,12 +122,20 @@ std::string reportMarkdown(const std::string& report_json) {
   if (const Json* map = find(report, {"map"}); map && map->is_object()) {
     md << "## Map\n\n" << text(find(*map, {"points"})) << " points at "
        << number(find(*map, {"voxel_size_m"}), 3) << " m from " << text(find(*map, {"keyframes"}))
-       << " keyframes.";
+       << " scans (the keyframes and the map scans between them).";
     if (const Json* files = find(*map, {"files"}); files && files->is_array()) {
       md << " Files:";
       for (const Json& f : *files) md << " `" << text(&f) << "`";
     }
     md << "\n\n";
+  }
+
+  if (!images.empty()) {
+    md << "## Renders\n\n";
+    for (const ReportImage& image : images) {
+      md << "### " << image.title << "\n\n![" << image.title << "](" << image.path << ")\n\n";
+      if (!image.caption.empty()) md << image.caption << "\n\n";
+    }
   }
 
   if (const Json* warnings = find(report, {"warnings"}); warnings && warnings->is_array() &&
@@ -135,8 +147,9 @@ std::string reportMarkdown(const std::string& report_json) {
   return md.str();
 }
 
-void writeReportMarkdown(const std::string& report_json, const std::string& path) {
-  writeFileAtomically(path, reportMarkdown(report_json));
+void writeReportMarkdown(const std::string& report_json, const std::string& path,
+                         const std::vector<ReportImage>& images) {
+  writeFileAtomically(path, reportMarkdown(report_json, images));
 }
 
 }  // namespace storey

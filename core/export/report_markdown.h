@@ -5,14 +5,25 @@
 /// run time; Table I (end-point drift, `end_point_drift`); Table II (timing
 /// per stage: `odometry.timing_ms`, and `backend.timing_ms` when present);
 /// the storey table (`storeys`, as addMapToReport() writes it); map outputs
-/// (`map`); warnings (`warnings`).
+/// (`map`); warnings (`warnings`); and, when the render stage gives them,
+/// the images (renders/*.png) with a title and a caption each.
 #include <string>
+#include <vector>
 
 namespace storey {
 
+/// An image embedded in the report; `path` relative to the report's folder.
+struct ReportImage {
+  std::string path;     ///< e.g. "renders/elevation_front.png"
+  std::string title;    ///< heading above the image
+  std::string caption;  ///< one paragraph below it; may be empty
+};
+
 /// Throws storey::Error when `report_json` is not a JSON object.
-std::string reportMarkdown(const std::string& report_json);
-/// Writes reportMarkdown(report_json) atomically to `path`.
-void writeReportMarkdown(const std::string& report_json, const std::string& path);
+std::string reportMarkdown(const std::string& report_json,
+                           const std::vector<ReportImage>& images = {});
+/// Writes reportMarkdown(report_json, images) atomically to `path`.
+void writeReportMarkdown(const std::string& report_json, const std::string& path,
+                         const std::vector<ReportImage>& images = {});
 
 }  // namespace storey

@@ -4,7 +4,6 @@
 #include <cmath>
 
 #include "sim/random.h"
-#include "sim/vlp16.h"
 
 namespace storey::sim {
 
@@ -44,13 +43,17 @@ std::int64_t LidarSimulator::scanEndNs(int n) const {
          (vlp16::kLasers - 1) * vlp16::kFiringIntervalNs;
 }
 
-Scan LidarSimulator::simulateScan(int n) const {
+Scan LidarSimulator::simulateScan(int n, std::vector<vlp16::FiringSequence>* firings) const {
   Random rng(seed_, 0x11da2000ULL + static_cast<std::uint64_t>(n));
   Scan scan;
   scan.frame_id = frame_id_;
   scan.stamp_ns = scanStampNs(n);
   const std::int64_t k0 = firstSequence(n), k1 = firstSequence(n + 1);
   scan.points.reserve(static_cast<std::size_t>((k1 - k0) * vlp16::kLasers));
+  if (firings != nullptr) {
+    firings->clear();
+    firings->reserve(static_cast<std::size_t>(k1 - k0));
+  }
 
   // Per laser: elevation sines/cosines and the azimuth advance since the
   // sequence's first firing (cos/sin of id * 2.304 us of rotation).
@@ -87,6 +90,13 @@ Scan LidarSimulator::simulateScan(int n) const {
       directions[id] = d_world.normalized().cast<float>();
     }
     caster_.cast16(origins, directions, static_cast<float>(spec_.max_range), hits);
+    vlp16::FiringSequence* firing = nullptr;
+    if (firings != nullptr) {
+      firing = &firings->emplace_back();
+      firing->t_ns = t_ns;
+      firing->azimuth_deg = 180.0 + 360.0 * turns;
+      if (firing->azimuth_deg >= 360.0) firing->azimuth_deg -= 360.0;
+    }
     for (int id = 0; id < vlp16::kLasers; ++id) {
       const RayHit& hit = hits[id];
       if (!std::isfinite(hit.distance)) continue;
@@ -104,6 +114,13 @@ Scan LidarSimulator::simulateScan(int n) const {
           static_cast<float>((t_ns + id * vlp16::kFiringIntervalNs - scan.stamp_ns) * 1e-9);
       point.ring = static_cast<std::uint16_t>(vlp16::ring(id));
       scan.points.push_back(point);
+      if (firing != nullptr) {
+        // The packet's 2 mm steps (exact when the ranges are quantized); a
+        // range beyond what the 16-bit field holds (131 m) is a no-return there.
+        const long steps = std::lround(range / vlp16::kDistanceStep);
+        firing->distance[id] = static_cast<std::uint16_t>(steps <= 65535 ? steps : 0);
+        firing->reflectivity[id] = static_cast<std::uint8_t>(point.intensity);
+      }
     }
   }
   return scan;

@@ -12,6 +12,7 @@
 #include "sim/building_spec.h"
 #include "sim/raycaster.h"
 #include "sim/trajectory.h"
+#include "sim/vlp16.h"
 #include "types/scan.h"
 
 namespace storey::sim {
@@ -36,7 +37,11 @@ class LidarSimulator {
   std::int64_t scanEndNs(int n) const;
   /// Simulates scan n; Scan::stamp_ns is relative to the start of the
   /// simulation (add the start time). Thread-safe; deterministic per (seed, n).
-  Scan simulateScan(int n) const;
+  /// `firings` (optional) receives the scan's firing sequences as the sensor
+  /// reports them (no-returns as distance 0, times relative to the start of
+  /// the simulation): the same returns as the scan's points, for a Velodyne
+  /// capture of the log.
+  Scan simulateScan(int n, std::vector<vlp16::FiringSequence>* firings = nullptr) const;
 
  private:
   std::int64_t firstSequence(int n) const;

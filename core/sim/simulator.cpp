@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <future>
+#include <memory>
 #include <ostream>
 #include <sstream>
 
@@ -18,8 +19,10 @@
 #include "common/log.h"
 #include "config/calibration.h"
 #include "sim/bag_writer.h"
+#include "sim/imu_csv_writer.h"
 #include "sim/imu_simulator.h"
 #include "sim/lidar_simulator.h"
+#include "sim/velodyne_pcap_writer.h"
 #include "sim/world.h"
 
 namespace storey::sim {
@@ -142,6 +145,8 @@ SimulationResult simulate(const BuildingSpec& spec, const SimulationOptions& opt
   const auto wall_start = std::chrono::steady_clock::now();
   spec.validate();
   if (out_dir.empty()) throw Error("simulator: no output folder given");
+  if (!options.formats.bag && !options.formats.pcap)
+    throw Error("simulator: no log format chosen (a bag, a pcap or both)");
   report(progress, 0.0, "building");
   const World world = makeWorld(spec);
   const Trajectory& trajectory = world.trajectory;
@@ -184,16 +189,32 @@ SimulationResult simulate(const BuildingSpec& spec, const SimulationOptions& opt
   const int scan_count = lidar.scanCount(result.duration);
   result.scans = scan_count;
 
-  const std::string bag_path = staging.file(kBagFile);
-  BagWriter bag(bag_path, options.compress ? BagCompression::kLz4 : BagCompression::kNone);
+  if (options.formats.pcap) {
+    writeImuCsv(
+        staging.file(kImuCsvFile), imu.samples, start_ns,
+        {"Storey simulator: IMU samples of " + spec.name + " (seed " + std::to_string(spec.seed) +
+             "), the clock of " + std::string(kPcapFile),
+         "time [s]; gyro [rad/s]; accel [m/s^2] (specific force, +g up at rest); IMU frame"});
+  }
+  std::unique_ptr<BagWriter> bag;
+  if (options.formats.bag) {
+    bag = std::make_unique<BagWriter>(
+        staging.file(kBagFile), options.compress ? BagCompression::kLz4 : BagCompression::kNone);
+  }
+  std::unique_ptr<VelodynePcapWriter> pcap;
+  if (options.formats.pcap) {
+    pcap = std::make_unique<VelodynePcapWriter>(staging.file(kPcapFile), start_ns,
+                                                sensors.lidar.rotation_rate);
+  }
   const double gyro_variance = std::pow(sensors.imu.gyro_noise_density, 2) * sensors.imu.rate;
   const double accel_variance = std::pow(sensors.imu.accel_noise_density, 2) * sensors.imu.rate;
   std::size_t next_imu = 0;
   auto writeImuUntil = [&](std::int64_t t_ns) {
+    if (!bag) return;
     while (next_imu < imu.samples.size() && imu.samples[next_imu].stamp_ns <= t_ns) {
       ImuSample sample = imu.samples[next_imu++];
       sample.stamp_ns += start_ns;
-      bag.writeImu(sensors.imu_topic, sensors.imu_frame_id, sample, gyro_variance, accel_variance);
+      bag->writeImu(sensors.imu_topic, sensors.imu_frame_id, sample, gyro_variance, accel_variance);
     }
   };
 
@@ -205,19 +226,28 @@ SimulationResult simulate(const BuildingSpec& spec, const SimulationOptions& opt
   tbb::task_arena arena(threads);
   const int chunk = std::max(8, 4 * threads);
   // Ray-cast the next chunk of scans while this thread writes the previous one.
+  struct Chunk {
+    std::vector<Scan> scans;
+    std::vector<std::vector<vlp16::FiringSequence>> firings;  ///< per scan, for the pcap
+  };
+  const bool want_firings = pcap != nullptr;
   auto castChunk = [&](int first) {
-    std::vector<Scan> out(
-        static_cast<std::size_t>(std::max(0, std::min(chunk, scan_count - first))));
+    Chunk out;
+    const auto size = static_cast<std::size_t>(std::max(0, std::min(chunk, scan_count - first)));
+    out.scans.resize(size);
+    if (want_firings) out.firings.resize(size);
     arena.execute([&] {
-      tbb::parallel_for(0, static_cast<int>(out.size()),
-                        [&](int i) { out[i] = lidar.simulateScan(first + i); });
+      tbb::parallel_for(0, static_cast<int>(size), [&](int i) {
+        out.scans[i] = lidar.simulateScan(first + i, want_firings ? &out.firings[i] : nullptr);
+      });
     });
     return out;
   };
-  std::future<std::vector<Scan>> pending = std::async(std::launch::async, castChunk, 0);
+  std::future<Chunk> pending = std::async(std::launch::async, castChunk, 0);
   for (int first = 0; first < scan_count; first += chunk) {
     report(progress, static_cast<double>(first) / std::max(1, scan_count), "ray-casting scans");
-    std::vector<Scan> scans = pending.get();
+    Chunk cast = pending.get();
+    std::vector<Scan>& scans = cast.scans;
     if (first + chunk < scan_count)
       pending = std::async(std::launch::async, castChunk, first + chunk);
     for (std::size_t i = 0; i < scans.size(); ++i) {
@@ -229,12 +259,31 @@ SimulationResult simulate(const BuildingSpec& spec, const SimulationOptions& opt
                    trajectory.frame(scan.stamp_ns * 1e-9, sensors.T_body_lidar).T_world_frame);
       result.points += static_cast<std::int64_t>(scan.points.size());
       scan.stamp_ns += start_ns;
-      bag.writeScan(sensors.points_topic, scan, start_ns + receipt_ns);
+      if (bag) bag->writeScan(sensors.points_topic, scan, start_ns + receipt_ns);
+      if (pcap) {
+        for (const vlp16::FiringSequence& firing : cast.firings[i]) pcap->add(firing);
+      }
     }
   }
   writeImuUntil(INT64_MAX / 2);
-  report(progress, 1.0, "writing the bag");
-  bag.close();
+  report(progress, 1.0, bag ? "writing the bag" : "writing the capture");
+  if (bag) bag->close();
+  if (pcap) {
+    pcap->close();
+    result.pcap_packets = pcap->packets();
+    // The capture's frames start where the azimuth wraps, half a revolution
+    // away from the bag's scans: their own ground truth, at their stamps.
+    writeFileAtomically(staging.file(kPcapLidarTruthFile), [&](std::ostream& out) {
+      out << "# timestamp x y z qx qy qz qw (LiDAR frame in the world frame, at the stamp of each "
+             "frame of "
+          << kPcapFile << ")\n";
+      for (const std::int64_t t_ns : pcap->frameStarts()) {
+        writeTumLine(
+            out, t_ns,
+            trajectory.frame((t_ns - start_ns) * 1e-9, sensors.T_body_lidar).T_world_frame);
+      }
+    });
+  }
   writeFileAtomically(staging.file(kLidarTruthFile), lidar_truth.str());
   staging.commit();
   result.wall_time =

@@ -1,6 +1,7 @@
 #pragma once
 /// `storey simulate`: building spec -> building mesh, legged-robot walk,
-/// VLP-16 and IMU logs in a ROS1 bag, ground truth. See docs/simulator.md.
+/// VLP-16 and IMU logs in a ROS1 bag and/or a Velodyne capture (pcap) with an
+/// IMU CSV, ground truth. See docs/simulator.md.
 ///
 /// World frame of every output: z up (gravity (0, 0, -g)), x = the robot's
 /// initial heading, origin at the LiDAR's start position.
@@ -14,13 +15,25 @@ namespace storey::sim {
 
 /// File names inside the output folder.
 inline constexpr const char* kBagFile = "simulation.bag";
+inline constexpr const char* kPcapFile = "simulation.pcap";  ///< Velodyne capture (formats.pcap)
+inline constexpr const char* kImuCsvFile = "imu.csv";        ///< its IMU (formats.pcap)
+/// LiDAR ground truth at the stamps of the capture's frames (formats.pcap).
+inline constexpr const char* kPcapLidarTruthFile = "groundtruth_lidar_pcap.tum";
 inline constexpr const char* kLidarTruthFile = "groundtruth_lidar.tum";
 inline constexpr const char* kImuTruthFile = "groundtruth_imu.tum";
 inline constexpr const char* kMeshFile = "building.ply";
 inline constexpr const char* kStoreysFile = "storeys.yaml";
 inline constexpr const char* kCalibrationFile = "calibration.yaml";
 
+/// Which logs to write (at least one).
+struct SimulationFormats {
+  bool bag = true;    ///< simulation.bag: ROS1 bag with the point clouds and the IMU
+  bool pcap = false;  ///< simulation.pcap + imu.csv: the VLP-16's UDP packets as VeloView records
+                      ///< them, and the IMU
+};
+
 struct SimulationOptions {
+  SimulationFormats formats;
   bool perfect_sensors = false;  ///< no noise, dropouts or biases (tests)
   double max_duration = 0.0;     ///< stop the sensors after this time; 0 = the whole walk [s]
   bool compress = true;          ///< LZ4 chunks in the bag
@@ -35,6 +48,7 @@ struct SimulationResult {
   std::int64_t scans = 0;
   std::int64_t points = 0;
   std::int64_t imu_samples = 0;
+  std::int64_t pcap_packets = 0;  ///< data packets in simulation.pcap (0 without it)
   std::size_t triangles = 0;
   int storeys = 0;
   double wall_time = 0.0;  ///< [s]

@@ -4,14 +4,26 @@
 /// laser ID; a firing sequence (16 firings + recharge) lasts 55.296 us. The
 /// head spins clockwise seen from above. Ring = laser index sorted by
 /// elevation (0 = -15 deg), as the ROS driver reports it.
+///
+/// The timing is the decoder's (io/velodyne/velodyne_tables.h), so what the
+/// simulator fires is what a Velodyne capture of it decodes to; the
+/// elevations are checked against the decoder's table by the tests.
+#include <array>
 #include <cmath>
 #include <cstdint>
+
+#include "io/velodyne/velodyne_tables.h"
 
 namespace storey::sim::vlp16 {
 
 constexpr int kLasers = 16;
-constexpr std::int64_t kFiringIntervalNs = 2304;   ///< between consecutive lasers [ns]
-constexpr std::int64_t kSequencePeriodNs = 55296;  ///< one firing sequence [ns]
+/// Between consecutive lasers [ns] (2304).
+constexpr std::int64_t kFiringIntervalNs =
+    static_cast<std::int64_t>(velodyne::kVlp16FiringS * 1e9 + 0.5);
+/// One firing sequence [ns] (55296).
+constexpr std::int64_t kSequencePeriodNs =
+    static_cast<std::int64_t>(velodyne::kVlp16SequenceS * 1e9 + 0.5);
+static_assert(kFiringIntervalNs == 2304 && kSequencePeriodNs == 55296, "VLP-16 timing");
 
 /// Elevation of laser `id` (firing order) [deg]: -15, 1, -13, 3, ..., -1, 15.
 constexpr int elevationDeg(int id) {
@@ -24,5 +36,17 @@ inline double elevation(int id) {
 constexpr int ring(int id) {
   return (elevationDeg(id) + 15) / 2;
 }
+
+/// Distance unit of the sensor's packets and of the simulated ranges [m].
+constexpr double kDistanceStep = 0.002;
+
+/// One firing sequence as the sensor reports it (what a data packet's half
+/// block holds): the raw returns of the 16 lasers, no-returns included.
+struct FiringSequence {
+  std::int64_t t_ns = 0;                          ///< time of its first firing (laser 0) [ns]
+  double azimuth_deg = 0.0;                       ///< head azimuth at that time [deg], in [0, 360)
+  std::array<std::uint16_t, kLasers> distance{};  ///< by laser id [2 mm]; 0 = no return
+  std::array<std::uint8_t, kLasers> reflectivity{};  ///< by laser id [0, 255]
+};
 
 }  // namespace storey::sim::vlp16

@@ -49,11 +49,11 @@ TEST(Cli, NoSubcommandOrUnknownOptionFails) {
   EXPECT_EQ(runStorey("frobnicate").status, 1);
 }
 
-TEST(Cli, NotYetImplementedSubcommandsSaySoAndFail) {
+TEST(Cli, RenderOfAFolderThatIsNoRunFails) {
   test::TempDir dir;
   const Result r = runStorey("render " + dir.path().string());
-  EXPECT_EQ(r.status, 2) << r.output;
-  EXPECT_NE(r.output.find("not implemented"), std::string::npos) << r.output;
+  EXPECT_EQ(r.status, 1) << r.output;
+  EXPECT_NE(r.output.find("trajectory.tum"), std::string::npos) << r.output;
 }
 
 TEST(Cli, BadCalibrationIsReportedWithTheKey) {

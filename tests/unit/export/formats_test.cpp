@@ -140,6 +140,8 @@ TEST(ReportMarkdown, TablesFromTheRunReport) {
   const std::string report = addMapToReport(
       R"({"storey_version": "0.1.0", "input": {"log": "x.bag", "scans_read": 10},
           "odometry": {"scans": 10, "timing_ms": {"total_per_scan": {"median": 12.5, "p95": 20, "mean": 13, "max": 30}}},
+          "backend": {"timing_ms_per_keyframe": {"srp_extraction": {"median": 9.5, "p95": 20, "mean": 11, "max": 40},
+                                                 "final_optimisation": 106.7}},
           "end_point_drift": {"dX_m": 0.01, "dY_m": 0.02, "dZ_m": -0.03, "dXYZ_m": 0.037,
                               "dYaw_rad": 0.01745329, "path_length_m": 100},
           "warnings": ["something to check"]})",
@@ -151,6 +153,8 @@ TEST(ReportMarkdown, TablesFromTheRunReport) {
   EXPECT_NE(md.find("## Table I"), std::string::npos);
   EXPECT_NE(md.find("| 0.010 | 0.020 | -0.030 | 0.037 | 1.000 |"), std::string::npos) << md;
   EXPECT_NE(md.find("| odometry: total_per_scan | 12.50 | 20.00 |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| back end, per keyframe: srp_extraction | 9.50 | 20.00 |"), std::string::npos) << md;
+  EXPECT_NE(md.find("whole graph: 106.7 ms"), std::string::npos) << md;
   EXPECT_NE(md.find("| 0 | -0.610 | 2.720 | 3.330 | 3.600 | 120.5 | 1000 |"), std::string::npos) << md;
   EXPECT_NE(md.find("| 1 | 2.990 | – | – | – |"), std::string::npos) << md;
   EXPECT_NE(md.find("- something to check"), std::string::npos);

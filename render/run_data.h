@@ -1,0 +1,83 @@
+#pragma once
+/// What the renders read from a finished run's folder: map.ply (a uniform
+/// subsample of at most max_display_points), trajectory.tum, keyframes.tum,
+/// planes.json, storeys.json. Missing optional files leave their part empty
+/// and add a note; a malformed file is a storey::Error naming it.
+#include <Eigen/Core>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "trajectory/tum.h"
+
+namespace storey::render {
+
+/// Map points kept for display, with the per-point attributes of map.ply.
+struct MapSample {
+  std::vector<Eigen::Vector3f> positions;  ///< world frame [m]
+  std::vector<std::int32_t> keyframe;      ///< -1 when the file has no `keyframe`
+  std::vector<std::int16_t> storey;        ///< -1 = none (or no `storey` in the file)
+  std::vector<std::uint8_t> stairs;        ///< 0 / 1
+  std::size_t file_points = 0;             ///< vertices in the file
+  std::size_t size() const { return positions.size(); }
+};
+
+/// Reads our binary PLY layout (docs/outputs.md): binary_little_endian,
+/// element vertex first; x y z required (float or double), keyframe, storey,
+/// stairs used when present, other properties skipped. Keeps every point
+/// when the file has at most max_points, otherwise a uniform deterministic
+/// subsample of about max_points (each vertex by a hash of its index).
+MapSample readMapSample(const std::string& path, std::size_t max_points);
+
+struct SrpObservation {
+  int keyframe = -1;                      ///< index into keyframes.tum
+  Eigen::Vector3d normal_lidar{0, 0, 1};  ///< plane in the keyframe's LiDAR frame
+  double distance_lidar = 0.0;
+  int points = 0;
+  double fit_rms = 0.0;  ///< [m]
+  bool outlier = false;
+  std::vector<Eigen::Vector3d>
+      hull_lidar;  ///< convex hull of the inliers (LiDAR frame); may be empty
+  std::optional<Eigen::Vector3d> centroid_lidar;
+};
+
+struct SrpPlane {
+  int id = 0;
+  Eigen::Vector3d normal{0, 0, 1};  ///< world, Hesse n . x = d
+  double distance = 0.0;
+  Eigen::Vector3d facing{0, 0, 1};  ///< from the plane towards the side it was seen from
+  std::vector<SrpObservation> observations;
+};
+
+std::vector<SrpPlane> readPlanesJson(const std::string& path);
+
+struct StoreyEntry {
+  int index = 0;
+  double floor = 0.0;             ///< floor elevation [m]
+  std::optional<double> ceiling;  ///< [m]
+  std::optional<double> height;   ///< floor to next floor [m]
+  double area = 0.0;              ///< [m^2]
+  std::size_t points = 0;
+  std::vector<Eigen::Vector2d> footprint;  ///< world x y
+};
+
+std::vector<StoreyEntry> readStoreysJson(const std::string& path);
+
+struct RunData {
+  std::string dir;
+  MapSample map;
+  Trajectory trajectory;  ///< trajectory.tum (required)
+  Trajectory keyframes;   ///< keyframes.tum (empty without the back end)
+  std::vector<SrpPlane> planes;
+  std::vector<StoreyEntry> storeys;
+  std::vector<std::string> notes;  ///< files missing and what is left out
+};
+
+RunData loadRun(const std::string& dir, std::size_t max_points);
+
+/// Storey of elevation z by the rule of docs/outputs.md ([floor - tolerance,
+/// next floor - tolerance)); -1 without storeys.
+int storeyOfElevation(const std::vector<StoreyEntry>& storeys, double z, double tolerance = 0.15);
+
+}  // namespace storey::render

@@ -1,0 +1,219 @@
+#include "render/srp_patches.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <unordered_map>
+
+namespace storey::render {
+namespace {
+
+struct CellKey {
+  int x, y;
+  bool operator==(const CellKey& o) const { return x == o.x && y == o.y; }
+};
+struct CellHash {
+  std::size_t operator()(const CellKey& k) const {
+    return static_cast<std::size_t>(k.x) * 73856093u ^ static_cast<std::size_t>(k.y) * 19349663u;
+  }
+};
+
+/// Hull in plane coordinates plus the plane, for fast inside tests.
+struct FlatPatch {
+  Eigen::Vector3d n, u, v, origin;
+  double d = 0.0;
+  std::vector<Eigen::Vector2d> polygon;  ///< counter-clockwise
+  Eigen::AlignedBox3d box;
+  int plane_id = 0;
+};
+
+FlatPatch flatten(const WorldPatch& p, double margin) {
+  FlatPatch f;
+  f.n = p.normal;
+  f.d = p.distance;
+  planeBasis(f.n, f.u, f.v);
+  f.origin = f.n * f.d;
+  std::vector<Eigen::Vector2d> pts;
+  for (const auto& h : p.hull) {
+    pts.emplace_back((h - f.origin).dot(f.u), (h - f.origin).dot(f.v));
+    f.box.extend(h);
+  }
+  f.polygon = convexHull2d(pts);
+  f.box.min().array() -= margin;
+  f.box.max().array() += margin;
+  f.plane_id = p.plane_id;
+  return f;
+}
+
+bool inside(const FlatPatch& f, const Eigen::Vector3d& p, double distance) {
+  if (!f.box.contains(p)) return false;
+  if (std::abs(f.n.dot(p) - f.d) > distance) return false;
+  const Eigen::Vector2d q((p - f.origin).dot(f.u), (p - f.origin).dot(f.v));
+  const std::size_t n = f.polygon.size();
+  if (n < 3) return false;
+  for (std::size_t i = 0; i < n; ++i) {
+    const Eigen::Vector2d a = f.polygon[i], b = f.polygon[(i + 1) % n];
+    const double cross = (b.x() - a.x()) * (q.y() - a.y()) - (b.y() - a.y()) * (q.x() - a.x());
+    if (cross < -1e-9) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+void planeBasis(const Eigen::Vector3d& n, Eigen::Vector3d& u, Eigen::Vector3d& v) {
+  const Eigen::Vector3d a =
+      std::abs(n.z()) < 0.9 ? Eigen::Vector3d::UnitZ() : Eigen::Vector3d::UnitX();
+  u = n.cross(a).normalized();
+  v = n.cross(u).normalized();
+}
+
+std::vector<Eigen::Vector2d> convexHull2d(std::vector<Eigen::Vector2d> p) {
+  std::sort(p.begin(), p.end(), [](const auto& a, const auto& b) {
+    return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y());
+  });
+  p.erase(std::unique(p.begin(), p.end()), p.end());
+  if (p.size() < 3) return p;
+  auto cross = [](const Eigen::Vector2d& o, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+    return (a.x() - o.x()) * (b.y() - o.y()) - (a.y() - o.y()) * (b.x() - o.x());
+  };
+  std::vector<Eigen::Vector2d> h(2 * p.size());
+  std::size_t k = 0;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    while (k >= 2 && cross(h[k - 2], h[k - 1], p[i]) <= 0) --k;
+    h[k++] = p[i];
+  }
+  for (std::size_t i = p.size() - 1, t = k + 1; i > 0; --i) {
+    while (k >= t && cross(h[k - 2], h[k - 1], p[i - 1]) <= 0) --k;
+    h[k++] = p[i - 1];
+  }
+  h.resize(k - 1);
+  return h;
+}
+
+PatchSet worldPatches(const RunData& run, double point_distance, double fallback_radius) {
+  PatchSet out;
+  // For patches estimated from the map: map points bucketed in cells of the search radius.
+  struct Key3 {
+    int x, y, z;
+    bool operator==(const Key3& o) const { return x == o.x && y == o.y && z == o.z; }
+  };
+  struct Hash3 {
+    std::size_t operator()(const Key3& k) const {
+      return static_cast<std::size_t>(k.x) * 73856093u ^ static_cast<std::size_t>(k.y) * 19349663u ^
+             static_cast<std::size_t>(k.z) * 83492791u;
+    }
+  };
+  std::unordered_map<Key3, std::vector<std::uint32_t>, Hash3> buckets;
+  auto key = [&](const Eigen::Vector3d& q) {
+    return Key3{static_cast<int>(std::floor(q.x() / fallback_radius)),
+                static_cast<int>(std::floor(q.y() / fallback_radius)),
+                static_cast<int>(std::floor(q.z() / fallback_radius))};
+  };
+  bool need_buckets = false;
+  for (const SrpPlane& plane : run.planes)
+    for (const SrpObservation& o : plane.observations) need_buckets |= o.hull_lidar.size() < 3;
+  if (need_buckets) {
+    for (std::size_t i = 0; i < run.map.size(); ++i)
+      buckets[key(run.map.positions[i].cast<double>())].push_back(static_cast<std::uint32_t>(i));
+  }
+  for (std::size_t pi = 0; pi < run.planes.size(); ++pi) {
+    const SrpPlane& plane = run.planes[pi];
+    for (std::size_t oi = 0; oi < plane.observations.size(); ++oi) {
+      const SrpObservation& o = plane.observations[oi];
+      if (o.keyframe < 0 || o.keyframe >= static_cast<int>(run.keyframes.size())) {
+        ++out.skipped;
+        continue;
+      }
+      const Pose& T_world_lidar = run.keyframes[static_cast<std::size_t>(o.keyframe)].pose;
+      WorldPatch p;
+      p.plane_id = plane.id;
+      p.plane_index = static_cast<int>(pi);
+      p.keyframe = o.keyframe;
+      p.observation = static_cast<int>(oi);
+      p.normal = (T_world_lidar.rotationMatrix() * o.normal_lidar).normalized();
+      p.distance = o.distance_lidar + p.normal.dot(T_world_lidar.translation());
+      // Seen side: towards the sensor of this observation.
+      const double side = p.normal.dot(T_world_lidar.translation()) - p.distance;
+      p.facing = side >= 0.0 ? p.normal : Eigen::Vector3d(-p.normal);
+      Eigen::Vector3d u, v;
+      planeBasis(p.normal, u, v);
+      const Eigen::Vector3d origin = p.normal * p.distance;
+      std::vector<Eigen::Vector2d> flat;
+      if (o.hull_lidar.size() >= 3) {
+        for (const auto& h : o.hull_lidar) {
+          const Eigen::Vector3d w = T_world_lidar * h;
+          flat.emplace_back((w - origin).dot(u), (w - origin).dot(v));
+        }
+      } else {
+        // Estimated from the map: points on the observed plane near the keyframe.
+        const Eigen::Vector3d at = T_world_lidar.translation();
+        const Key3 c = key(at);
+        for (int dx = -1; dx <= 1; ++dx)
+          for (int dy = -1; dy <= 1; ++dy)
+            for (int dz = -1; dz <= 1; ++dz) {
+              const auto it = buckets.find({c.x + dx, c.y + dy, c.z + dz});
+              if (it == buckets.end()) continue;
+              for (std::uint32_t i : it->second) {
+                const Eigen::Vector3d q = run.map.positions[i].cast<double>();
+                if ((q - at).squaredNorm() > fallback_radius * fallback_radius) continue;
+                if (std::abs(p.normal.dot(q) - p.distance) > point_distance) continue;
+                flat.emplace_back((q - origin).dot(u), (q - origin).dot(v));
+              }
+            }
+        p.estimated = true;
+      }
+      const std::vector<Eigen::Vector2d> hull = convexHull2d(flat);
+      if (hull.size() < 3) {
+        ++out.skipped;
+        continue;
+      }
+      if (p.estimated) ++out.estimated;
+      Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+      for (const auto& h : hull) {
+        p.hull.push_back(origin + h.x() * u + h.y() * v);
+        sum += p.hull.back();
+      }
+      p.centroid = sum / static_cast<double>(p.hull.size());
+      out.patches.push_back(std::move(p));
+    }
+  }
+  return out;
+}
+
+std::vector<int> srpOfPoints(const MapSample& map, const std::vector<WorldPatch>& patches,
+                             double point_distance, const std::vector<int>& use) {
+  std::vector<int> out(map.size(), -1);
+  std::vector<FlatPatch> flat;
+  if (use.empty()) {
+    for (const auto& p : patches) flat.push_back(flatten(p, point_distance));
+  } else {
+    for (int i : use) flat.push_back(flatten(patches[static_cast<std::size_t>(i)], point_distance));
+  }
+  if (flat.empty()) return out;
+  constexpr double kCell = 1.0;
+  std::unordered_map<CellKey, std::vector<int>, CellHash> grid;
+  for (std::size_t i = 0; i < flat.size(); ++i) {
+    const auto& b = flat[i].box;
+    for (int x = static_cast<int>(std::floor(b.min().x() / kCell));
+         x <= static_cast<int>(std::floor(b.max().x() / kCell)); ++x)
+      for (int y = static_cast<int>(std::floor(b.min().y() / kCell));
+           y <= static_cast<int>(std::floor(b.max().y() / kCell)); ++y)
+        grid[{x, y}].push_back(static_cast<int>(i));
+  }
+  for (std::size_t i = 0; i < map.size(); ++i) {
+    const Eigen::Vector3d p = map.positions[i].cast<double>();
+    const auto it = grid.find(
+        {static_cast<int>(std::floor(p.x() / kCell)), static_cast<int>(std::floor(p.y() / kCell))});
+    if (it == grid.end()) continue;
+    for (int k : it->second) {
+      if (inside(flat[static_cast<std::size_t>(k)], p, point_distance)) {
+        out[i] = flat[static_cast<std::size_t>(k)].plane_id;
+        break;
+      }
+    }
+  }
+  return out;
+}
+
+}  // namespace storey::render

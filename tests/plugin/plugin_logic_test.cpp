@@ -1,0 +1,181 @@
+// The plugin's logic that needs neither Qt nor CloudCompare: planes.json
+// parsing, the rectangle shown for each SRP, the calibration/output defaults
+// and "Export storeys" through the core writers. Expected values are worked
+// out by hand from the fixtures below.
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+
+#include "PlanesJson.h"
+#include "StoreyRun.h"
+#include "common/error.h"
+#include "support/temp_dir.h"
+
+namespace storey::plugin {
+namespace {
+
+// A wall x = 2 (n = +x, d = 2) seen from two keyframes: keyframe 0 at the
+// origin, keyframe 1 moved by +1 m in y and turned 90 deg about z, so its
+// LiDAR frame sees the wall at y_lidar = -2 ... and the hull below.
+const char* kPlanes = R"({
+  "format": "storey planes, version 1",
+  "planes": [
+    {"id": 0, "normal": [1, 0, 0], "distance": 2.0, "observations": [
+      {"keyframe": 0, "normal": [1, 0, 0], "distance": 2.0, "points": 500,
+       "hull": [[2, 0, 0], [2, 3, 0], [2, 3, 2.5], [2, 0, 2.5]]},
+      {"keyframe": 1, "normal": [0, -1, 0], "distance": 2.0, "points": 400,
+       "hull": [[-1, -2, 0], [3, -2, 0], [3, -2, 1]]}
+    ]},
+    {"id": 1, "normal": [0, 0, 1], "distance": 0.0, "facing": [0, 0, 1], "observations": [
+      {"keyframe": 0, "normal": [0, 0, -1], "distance": 1.0, "points": 900}
+    ]},
+    {"id": 2, "normal": [0, 0, 1], "distance": 2.5, "observations": [
+      {"keyframe": 0, "normal": [0, 0, 1], "distance": 2.5, "points": 700}
+    ]}
+  ]
+})";
+
+Trajectory twoKeyframes() {
+  Trajectory t(2);
+  t[0].time = 0.0;
+  t[1].time = 1.0;
+  // R_z(+90 deg): x_lidar -> y_world, y_lidar -> -x_world.
+  t[1].pose = Pose(Eigen::Quaterniond(Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitZ())),
+                   Eigen::Vector3d(0, 1, 0));
+  return t;
+}
+
+TEST(PluginPlanes, ParsesPlanesAndObservations) {
+  const std::vector<GlobalPlane> planes = parsePlanesJson(kPlanes);
+  ASSERT_EQ(planes.size(), 3u);
+  EXPECT_EQ(planes[0].id, 0);
+  EXPECT_DOUBLE_EQ(planes[0].distance, 2.0);
+  ASSERT_EQ(planes[0].observations.size(), 2u);
+  EXPECT_EQ(planes[0].observations[1].keyframe, 1);
+  EXPECT_EQ(planes[0].observations[0].points, 500);
+  EXPECT_EQ(planes[0].observations[0].hull.size(), 4u);
+  EXPECT_TRUE(planes[1].observations[0].hull.empty());
+}
+
+TEST(PluginPlanes, PatchCoversTheHullsOfEveryKeyframe) {
+  const std::vector<GlobalPlane> planes = parsePlanesJson(kPlanes);
+  const PlanePatch patch = planePatch(planes[0], twoKeyframes());
+  // Keyframe 1's hull in the world: (-1,-2,0) -> (2, 0, 0), (3,-2,0) -> (2, 4, 0),
+  // (3,-2,1) -> (2, 4, 1). Union with keyframe 0's: y in [0, 4], z in [0, 2.5].
+  EXPECT_TRUE(patch.from_hulls);
+  EXPECT_NEAR(patch.width, 4.0, 1e-9);   // horizontal (u) for a wall
+  EXPECT_NEAR(patch.height, 2.5, 1e-9);  // vertical (v)
+  EXPECT_NEAR((patch.center - Eigen::Vector3d(2, 2, 1.25)).norm(), 0.0, 1e-9);
+  EXPECT_NEAR(patch.u.z(), 0.0, 1e-12);
+  EXPECT_NEAR(patch.u.cross(patch.v).dot(patch.normal), 1.0, 1e-12);  // right-handed
+  EXPECT_TRUE(onPatch(patch, {2.03, 3.9, 2.4}, 0.05, 0.0));
+  EXPECT_FALSE(onPatch(patch, {2.10, 3.9, 2.4}, 0.05, 0.0));  // off the plane
+  EXPECT_FALSE(onPatch(patch, {2.0, 4.5, 1.0}, 0.05, 0.1));   // beyond its edge
+}
+
+TEST(PluginPlanes, WithoutHullsAFixedSquareAtTheObservation) {
+  const std::vector<GlobalPlane> planes = parsePlanesJson(kPlanes);
+  // Floor seen 1 m below keyframe 0 (at the origin): foot of the perpendicular
+  // (0, 0, -1), projected onto the global plane z = 0 -> centre (0, 0, 0).
+  const PlanePatch patch = planePatch(planes[1], twoKeyframes(), 3.0);
+  EXPECT_FALSE(patch.from_hulls);
+  EXPECT_DOUBLE_EQ(patch.width, 3.0);
+  EXPECT_DOUBLE_EQ(patch.height, 3.0);
+  EXPECT_NEAR(patch.center.norm(), 0.0, 1e-12);
+}
+
+TEST(PluginPlanes, KindFromNormalAndTheSideItWasSeenFrom) {
+  const std::vector<GlobalPlane> planes = parsePlanesJson(kPlanes);
+  EXPECT_EQ(planeKind(planes[0], twoKeyframes()), "wall");
+  EXPECT_EQ(planeKind(planes[1], twoKeyframes()), "floor");  // from "facing"
+  // No "facing": z = 2.5 observed by a sensor at z = 0, so from below.
+  EXPECT_FALSE(planes[2].facing);
+  EXPECT_EQ(planeKind(planes[2], twoKeyframes()), "ceiling");
+  GlobalPlane slanted = planes[0];
+  slanted.normal = Eigen::Vector3d(1, 0, 1).normalized();  // 45 deg
+  EXPECT_EQ(planeKind(slanted, twoKeyframes()), "plane");
+}
+
+TEST(PluginPlanes, BadJsonIsAnError) {
+  EXPECT_THROW(parsePlanesJson("{"), Error);
+  EXPECT_THROW(parsePlanesJson("{\"planes\": 3}"), Error);
+  EXPECT_THROW(parsePlanesJson(R"({"planes": [{"id": 0, "normal": [1, 0], "distance": 1}]})"), Error);
+}
+
+TEST(PluginRun, CalibrationBesideTheLogAndDefaultOutputFolder) {
+  test::TempDir dir;
+  const std::string log = dir.write("walk.bag", "x");
+  RunRequest r;
+  r.log_path = log;
+  EXPECT_EQ(resolveCalibration(r), "");
+  const std::string calibration = dir.write("calibration.yaml", "x");
+  EXPECT_EQ(resolveCalibration(r), calibration);
+  r.calibration_path = "/elsewhere/cal.yaml";
+  EXPECT_EQ(resolveCalibration(r), "/elsewhere/cal.yaml");
+  EXPECT_EQ(resolveOutDir(r), dir.file("walk_storey"));
+  r.out_dir = "/tmp/o";
+  EXPECT_EQ(resolveOutDir(r), "/tmp/o");
+}
+
+TEST(PluginRun, MissingLogIsAnErrorNamingIt) {
+  RunRequest r;
+  r.log_path = "/nonexistent/walk.bag";
+  try {
+    runStorey(r, Config{}, nullptr);
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("/nonexistent/walk.bag"), std::string::npos) << e.what();
+  }
+}
+
+MapCloud threePoints() {
+  MapCloud m;
+  for (int i = 0; i < 3; ++i) {
+    m.positions.emplace_back(static_cast<float>(i), 0.f, i == 2 ? 3.f : 0.f);
+    m.intensity.push_back(10.f * static_cast<float>(i));
+    m.time.push_back(100.0 + i);
+    m.keyframe.push_back(i);
+    m.storey.push_back(i == 2 ? 1 : 0);
+    m.flags.push_back(0);
+  }
+  return m;
+}
+
+std::string plyHeader(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::string header, line;
+  while (std::getline(in, line) && line != "end_header") header += line + "\n";
+  return header;
+}
+
+TEST(PluginExport, OneFilePerStoreyWithItsPoints) {
+  test::TempDir dir;
+  StoreyExportFormats formats;
+  formats.las = true;
+  formats.ply = true;
+  const std::vector<std::string> files = exportStoreys(threePoints(), dir.file("out"), formats);
+  ASSERT_EQ(files.size(), 4u);
+  EXPECT_NE(plyHeader(dir.file("out/storey_00.ply")).find("element vertex 2\n"), std::string::npos);
+  EXPECT_NE(plyHeader(dir.file("out/storey_01.ply")).find("element vertex 1\n"), std::string::npos);
+  // LAS 1.4: the 64-bit point count is at byte 247 of the header.
+  std::ifstream las(dir.file("out/storey_00.las"), std::ios::binary);
+  char header[375];
+  ASSERT_TRUE(las.read(header, sizeof(header)));
+  EXPECT_EQ(std::string(header, 4), "LASF");
+  std::uint64_t count = 0;
+  std::memcpy(&count, header + 247, sizeof(count));
+  EXPECT_EQ(count, 2u);
+}
+
+TEST(PluginExport, MapWithoutStoreysIsAnError) {
+  test::TempDir dir;
+  MapCloud m = threePoints();
+  for (auto& s : m.storey) s = kNoStorey;
+  EXPECT_THROW(exportStoreys(m, dir.file("out"), {}), Error);
+}
+
+}  // namespace
+}  // namespace storey::plugin
