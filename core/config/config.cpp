@@ -61,7 +61,7 @@ void visitOdometry(V& v, OdometryConfig& c) {
   v.field("line_eigen_ratio", c.line_eigen_ratio);
   v.field("max_point_distance", c.max_point_distance);
   v.field("point_sigma", c.point_sigma);
-  v.field("huber_width", c.huber_width);
+  v.field("huber_threshold", c.huber_threshold);
   v.field("degenerate_translation_std", c.degenerate_translation_std);
   v.field("degenerate_rotation_std", c.degenerate_rotation_std);
   v.field("prior_velocity_sigma", c.prior_velocity_sigma);
@@ -365,7 +365,7 @@ void Config::validate() const {
         {"odometry.line_eigen_ratio", o.line_eigen_ratio},
         {"odometry.max_point_distance", o.max_point_distance},
         {"odometry.point_sigma", o.point_sigma},
-        {"odometry.huber_width", o.huber_width},
+        {"odometry.huber_threshold", o.huber_threshold},
         {"odometry.degenerate_translation_std", o.degenerate_translation_std},
         {"odometry.degenerate_rotation_std", o.degenerate_rotation_std},
         {"odometry.max_scan_gap", o.max_scan_gap},

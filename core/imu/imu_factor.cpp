@@ -53,6 +53,12 @@ ImuFactor::ImuFactor(const ImuPreintegration& preintegration)
 
 bool ImuFactor::Evaluate(double const* const* parameters, double* residuals,
                          double** jacobians) const {
+  return evaluateWithGravity(parameters, gravity_, residuals, jacobians, nullptr);
+}
+
+bool ImuFactor::evaluateWithGravity(double const* const* parameters,
+                                    const Eigen::Vector3d& gravity_world, double* residuals,
+                                    double** jacobians, double* jacobian_gravity) const {
   const Eigen::Map<const Eigen::Vector3d> p_i(parameters[0]);
   const Eigen::Quaterniond q_i =
       Eigen::Map<const Eigen::Quaterniond>(parameters[0] + 3).normalized();
@@ -71,8 +77,8 @@ bool ImuFactor::Evaluate(double const* const* parameters, double* residuals,
   const Eigen::Vector3d phi_corr = dR_dbg_ * dbg;
   const Eigen::Quaterniond dR_corr = dR_ * so3::expQuaternion(phi_corr);
   const Eigen::Matrix3d Ri_T = q_i.toRotationMatrix().transpose();
-  const Eigen::Vector3d w_v = v_j - v_i - gravity_ * dt_;
-  const Eigen::Vector3d w_p = p_j - p_i - v_i * dt_ - 0.5 * dt_ * dt_ * gravity_;
+  const Eigen::Vector3d w_v = v_j - v_i - gravity_world * dt_;
+  const Eigen::Vector3d w_p = p_j - p_i - v_i * dt_ - 0.5 * dt_ * dt_ * gravity_world;
   const Eigen::Quaterniond q_err = dR_corr.conjugate() * q_i.conjugate() * q_j;
 
   Eigen::Matrix<double, 15, 1> r;
@@ -84,6 +90,13 @@ bool ImuFactor::Evaluate(double const* const* parameters, double* residuals,
   const auto L_inv = sqrt_information_.triangularView<Eigen::Lower>();
   Eigen::Map<Eigen::Matrix<double, 15, 1>> r_out(residuals);
   r_out = L_inv * r;
+  if (jacobian_gravity != nullptr) {
+    Eigen::Matrix<double, 15, 3> J = Eigen::Matrix<double, 15, 3>::Zero();
+    J.block<3, 3>(3, 0) = -Ri_T * dt_;
+    J.block<3, 3>(6, 0) = -0.5 * dt_ * dt_ * Ri_T;
+    Eigen::Map<Eigen::Matrix<double, 15, 3, Eigen::RowMajor>> out(jacobian_gravity);
+    out = L_inv * J;
+  }
   if (jacobians == nullptr) return true;
 
   const Eigen::Vector3d r_R = r.segment<3>(0);
@@ -133,6 +146,31 @@ bool ImuFactor::Evaluate(double const* const* parameters, double* residuals,
     J.block<3, 3>(12, 6) = I3;
     Eigen::Map<Eigen::Matrix<double, 15, 9, Eigen::RowMajor>> out(jacobians[3]);
     out = L_inv * J;
+  }
+  return true;
+}
+
+Eigen::Vector3d tiltedGravity(const double* tilt, double g_norm,
+                              Eigen::Matrix<double, 3, 2>* jacobian) {
+  const Eigen::Vector3d phi(tilt[0], tilt[1], 0.0);
+  const Eigen::Vector3d g = so3::expMatrix(phi) * Eigen::Vector3d(0.0, 0.0, -g_norm);
+  if (jacobian) *jacobian = (-so3::skew(g) * so3::rightJacobian(-phi)).leftCols<2>();
+  return g;
+}
+
+bool ImuGravityFactor::Evaluate(double const* const* parameters, double* residuals,
+                                double** jacobians) const {
+  Eigen::Matrix<double, 3, 2> dg_dtilt;
+  const bool want_tilt = jacobians != nullptr && jacobians[4] != nullptr;
+  const Eigen::Vector3d g =
+      tiltedGravity(parameters[4], inner_.gravityNorm(), want_tilt ? &dg_dtilt : nullptr);
+  Eigen::Matrix<double, 15, 3, Eigen::RowMajor> dr_dg;
+  if (!inner_.evaluateWithGravity(parameters, g, residuals, jacobians,
+                                  want_tilt ? dr_dg.data() : nullptr))
+    return false;
+  if (want_tilt) {
+    Eigen::Map<Eigen::Matrix<double, 15, 2, Eigen::RowMajor>> out(jacobians[4]);
+    out = dr_dg * dg_dtilt;
   }
   return true;
 }

@@ -45,6 +45,13 @@ class ImuFactor final : public ceres::SizedCostFunction<15, 7, 9, 7, 9> {
 
   bool Evaluate(double const* const* parameters, double* residuals,
                 double** jacobians) const override;
+  /// The same with gravity `gravity_world` [m/s^2] in place of (0, 0, -|g|);
+  /// with `jacobian_gravity` non-null, also d(whitened r)/d(gravity) (15x3,
+  /// row-major): dr_v/dg = -R_i^T Dt, dr_p/dg = -R_i^T Dt^2 / 2.
+  bool evaluateWithGravity(double const* const* parameters, const Eigen::Vector3d& gravity_world,
+                           double* residuals, double** jacobians, double* jacobian_gravity) const;
+  /// |g| of the preintegration's noise model [m/s^2].
+  double gravityNorm() const { return gravity_.norm(); }
 
   /// Residual [r_R [rad], r_v [m/s], r_p [m], r_bg [rad/s], r_ba [m/s^2]]
   /// between two states, not whitened (diagnostics, tests).
@@ -60,6 +67,31 @@ class ImuFactor final : public ceres::SizedCostFunction<15, 7, 9, 7, 9> {
   Eigen::Vector3d gravity_;
   double dt_;
   Matrix15d sqrt_information_;
+};
+
+/// Gravity in the world (map) frame tilted by t = (t_x, t_y) [rad]:
+/// g(t) = Exp([t_x, t_y, 0]) (0, 0, -g_norm); with `jacobian`, dg/dt (3x2),
+/// the first two columns of -[g(t)]x Jl([t_x, t_y, 0]) (Jl(phi) = Jr(-phi)).
+Eigen::Vector3d tiltedGravity(const double* tilt, double g_norm,
+                              Eigen::Matrix<double, 3, 2>* jacobian = nullptr);
+
+/// The IMU factor with gravity's direction as a parameter block: blocks pose_i
+/// (7), motion_i (9), pose_j (7), motion_j (9), tilt (2), gravity
+/// g = tiltedGravity(tilt). The odometry's world frame is levelled from the
+/// still start, where an accelerometer bias orthogonal to gravity cannot be
+/// told from a tilt (imu.md, section 1); the map built in that frame keeps the
+/// tilt. Estimating gravity's direction in the map frame (as FAST-LIO2 does
+/// with its gravity state) keeps the IMU consistent with the map, lets the
+/// accelerometer bias be told from the tilt once the sensor turns, and gives
+/// the rotation that levels the output.
+class ImuGravityFactor final : public ceres::SizedCostFunction<15, 7, 9, 7, 9, 2> {
+ public:
+  explicit ImuGravityFactor(const ImuPreintegration& preintegration) : inner_(preintegration) {}
+  bool Evaluate(double const* const* parameters, double* residuals,
+                double** jacobians) const override;
+
+ private:
+  ImuFactor inner_;
 };
 
 }  // namespace storey

@@ -21,7 +21,8 @@ namespace storey {
 struct FeatureConfig {
   int neighbours = 5;                 ///< k points on each side along the ring [>= 2]
   int sectors = 6;                    ///< each ring is split in this many sectors by time [>= 1]
-  int max_edges_per_sector = 20;      ///< strongest edges kept per sector
+  int max_edges_per_sector = 0;       ///< strongest edges kept per sector; 0: no edge features
+                                      ///< (planar features only, as FAST-LIO2; odometry.md says why)
   double edge_threshold = 0.3;        ///< smoothness above which a point is an edge [-]
                                       ///< (0.3: creases sharper than about 145 deg)
   double plane_threshold = 0.1;       ///< smoothness below which a point is planar [-]

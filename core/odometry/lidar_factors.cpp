@@ -68,24 +68,25 @@ bool PointToLineFactor::Evaluate(double const* const* parameters, double* residu
 namespace storey {
 
 ScanResidualsFactor::ScanResidualsFactor(const MatchResult& matches,
-                                         const double* pose_for_weights, double huber_width) {
+                                         const double* pose_for_weights, double huber_threshold) {
   planes_.reserve(matches.planes.size());
   lines_.reserve(matches.lines.size());
-  const auto huberWeight = [huber_width](double distance) {
-    const double a = std::abs(distance);
-    return a <= huber_width ? 1.0 : huber_width / a;
+  const auto huberWeight = [huber_threshold](double whitened) {
+    const double a = std::abs(whitened);
+    return a <= huber_threshold ? 1.0 : huber_threshold / a;
   };
   Eigen::Vector3d x_world;
   for (const PlaneMatch& m : matches.planes) {
     worldPointJacobian(pose_for_weights, m.y_imu, x_world, nullptr);
     const double distance = m.n_world.dot(x_world) - m.d_world;
-    planes_.push_back({m.y_imu, m.n_world, m.d_world, std::sqrt(huberWeight(distance)) / m.sigma});
+    planes_.push_back(
+        {m.y_imu, m.n_world, m.d_world, std::sqrt(huberWeight(distance / m.sigma)) / m.sigma});
   }
   for (const LineMatch& m : matches.lines) {
     worldPointJacobian(pose_for_weights, m.y_imu, x_world, nullptr);
     const Eigen::Vector3d u = m.u_world.normalized();
     const double distance = (x_world - m.a_world).cross(u).norm();
-    lines_.push_back({m.y_imu, m.a_world, u, std::sqrt(huberWeight(distance)) / m.sigma});
+    lines_.push_back({m.y_imu, m.a_world, u, std::sqrt(huberWeight(distance / m.sigma)) / m.sigma});
   }
   set_num_residuals(static_cast<int>(planes_.size() + 3 * lines_.size()));
   mutable_parameter_block_sizes()->push_back(7);

@@ -71,13 +71,16 @@ namespace storey {
 /// block instead of thousands: Ceres' per-block overhead dominated the solve).
 /// Residuals are the point-to-plane and point-to-line ones above, each
 /// weighted by 1 / sigma of its match and by the square root of its Huber
-/// weight, min(1, huber_width / |distance|), computed from the distance at the
-/// pose given to the constructor (iteratively reweighted least squares; the
-/// odometry re-associates and reweighs at every matching round).
+/// weight on the whitened distance, min(1, huber_threshold / (|distance| / sigma)),
+/// computed from the distance at the pose given to the constructor
+/// (iteratively reweighted least squares; the odometry re-associates and
+/// reweighs at every matching round). The threshold is in standard
+/// deviations (1.345: 95 % efficiency on Gaussian residuals), so a match
+/// with an uncertain fit (large sigma) is down-weighted later than a sharp one.
 class ScanResidualsFactor final : public ceres::CostFunction {
  public:
   ScanResidualsFactor(const MatchResult& matches, const double* pose_for_weights,
-                      double huber_width);
+                      double huber_threshold);
   bool Evaluate(double const* const* parameters, double* residuals,
                 double** jacobians) const override;
   /// Sum of squared whitened residuals at `pose` without robust weights.

@@ -103,18 +103,7 @@ void LidarInertialOdometry::finish() {
 }
 
 void LidarInertialOdometry::applyCorrection(const Pose& T_corrected_old) {
-  for (auto& frame : window_) {
-    ImuState state = frame->state();
-    state.T_world_imu = T_corrected_old * state.T_world_imu;
-    state.v_world_imu = T_corrected_old.rotation() * state.v_world_imu;
-    frame->blocks = ImuStateBlocks::fromState(state);
-    frame->motion_prior.mean.head<3>() = T_corrected_old.rotation() * frame->motion_prior.mean.head<3>();
-    Matrix9d M = Matrix9d::Identity();  // rotates the velocity part; orthogonal
-    M.topLeftCorner<3, 3>() = T_corrected_old.rotationMatrix();
-    frame->motion_prior.information = M * frame->motion_prior.information * M.transpose();
-  }
-  plane_map_.transform(T_corrected_old);
-  edge_map_.transform(T_corrected_old);
+  T_output_corrected_ = T_corrected_old * T_output_corrected_;
 }
 
 void LidarInertialOdometry::initialise() {
@@ -213,9 +202,12 @@ void LidarInertialOdometry::processScan(const Scan& scan) {
       origin_set_ = true;
     }
     frame->blocks = ImuStateBlocks::fromState(previous);
-    frame->motion_prior = diagonalMotionPrior(Eigen::Map<const Vector9d>(frame->blocks.motion),
-                                              cfg.prior_velocity_sigma, cfg.prior_gyro_bias_sigma,
-                                              cfg.prior_accel_bias_sigma);
+    // The still start levels the world frame with the accelerometer: a bias
+    // orthogonal to gravity is a tilt of |b| / |g| (imu.md), hence the tilt's prior.
+    frame->motion_prior = diagonalMotionPrior(
+        Eigen::Map<const Vector9d>(frame->blocks.motion), Eigen::Map<const Eigen::Vector2d>(tilt_),
+        cfg.prior_velocity_sigma, cfg.prior_gyro_bias_sigma, cfg.prior_accel_bias_sigma,
+        cfg.prior_accel_bias_sigma / gravity);
   } else {
     const Frame& last = *window_.back();
     previous = last.state();
@@ -264,30 +256,32 @@ void LidarInertialOdometry::optimise(Frame& newest) {
     auto t = Clock::now();
     newest.matches = matchFeatures(newest.planes_imu, newest.edges_imu,
                                    newest.blocks.toState(newest.state_ns).T_world_imu, plane_map_,
-                                   edge_map_, cfg);
+                                   edge_map_, cfg, config_.sensor.T_imu_lidar.translation());
     newest.stats.ms_matching += msSince(t);
 
     t = Clock::now();
     ceres::Problem problem;
     for (auto& frame : window_) addImuStateBlocks(problem, frame->blocks);
+    problem.AddParameterBlock(tilt_, 2);
     Frame& oldest = *window_.front();
     problem.SetParameterBlockConstant(oldest.blocks.pose);
     problem.AddResidualBlock(new MotionPriorFactor(oldest.motion_prior), nullptr,
-                             oldest.blocks.motion);
+                             oldest.blocks.motion, tilt_);
     for (std::size_t i = 1; i < window_.size(); ++i) {
       Frame& previous = *window_[i - 1];
       Frame& frame = *window_[i];
       const ImuBias bias = previous.state().bias;
       if (frame.from_previous->needsRepropagation(bias, cfg.preintegration))
         frame.from_previous->repropagate(bias);
-      problem.AddResidualBlock(new ImuFactor(*frame.from_previous), nullptr, previous.blocks.pose,
-                               previous.blocks.motion, frame.blocks.pose, frame.blocks.motion);
+      problem.AddResidualBlock(new ImuGravityFactor(*frame.from_previous), nullptr,
+                               previous.blocks.pose, previous.blocks.motion, frame.blocks.pose,
+                               frame.blocks.motion, tilt_);
     }
     for (std::size_t i = 1; i < window_.size(); ++i) {
       Frame& frame = *window_[i];
       if (frame.matches.planes.empty() && frame.matches.lines.empty()) continue;
       problem.AddResidualBlock(
-          new ScanResidualsFactor(frame.matches, frame.blocks.pose, cfg.huber_width), nullptr,
+          new ScanResidualsFactor(frame.matches, frame.blocks.pose, cfg.huber_threshold), nullptr,
           frame.blocks.pose);
     }
     ceres::Solver::Options options;
@@ -336,7 +330,8 @@ void LidarInertialOdometry::slide() {
   Frame& oldest = *window_.front();
   if (!oldest.in_map) {
     const Pose T_world_imu = oldest.state().T_world_imu;
-    plane_map_.insert(toWorld(oldest.planes_imu, T_world_imu));
+    const Eigen::Vector3d lidar_world = T_world_imu * config_.sensor.T_imu_lidar.translation();
+    plane_map_.insert(toWorld(oldest.planes_imu, T_world_imu), lidar_world);
     edge_map_.insert(toWorld(oldest.edges_imu, T_world_imu));
     // Dropping far voxels walks the whole map: once per metre travelled is enough.
     const Eigen::Vector3d sensor_world = T_world_imu.translation();
@@ -349,9 +344,10 @@ void LidarInertialOdometry::slide() {
   }
   if (window_.size() == 1) return;  // the first frame stays as the window's fixed anchor
   Frame& next = *window_[1];
-  next.motion_prior = propagateMotionPrior(oldest.motion_prior, ImuFactor(*next.from_previous),
+  next.motion_prior = propagateMotionPrior(oldest.motion_prior,
+                                           ImuGravityFactor(*next.from_previous),
                                            oldest.blocks.pose, oldest.blocks.motion,
-                                           next.blocks.pose, next.blocks.motion,
+                                           next.blocks.pose, next.blocks.motion, tilt_,
                                            config_.odometry.pose_sigma_translation,
                                            config_.odometry.pose_sigma_rotation);
   emit(oldest);
@@ -363,6 +359,15 @@ void LidarInertialOdometry::emit(Frame& frame) {
   OdometryResult result;
   result.scan_stamp_ns = frame.scan_stamp_ns;
   result.state = frame.state();
+  // Output frame: the map frame levelled by the estimated gravity direction
+  // (g_map = Exp([t, 0]) g, so Exp(-[t, 0]) maps it to (0, 0, -|g|)), then the
+  // back end's corrections.
+  const Pose T_output_map =
+      T_output_corrected_ *
+      Pose(Eigen::Quaterniond(so3::expMatrix(-Eigen::Vector3d(tilt_[0], tilt_[1], 0.0))),
+           Eigen::Vector3d::Zero());
+  result.state.T_world_imu = T_output_map * result.state.T_world_imu;
+  result.state.v_world_imu = T_output_map.rotation() * result.state.v_world_imu;
   result.T_world_lidar = result.state.T_world_imu * config_.sensor.T_imu_lidar;
   result.deskewed = std::move(frame.deskewed);
   result.stats = frame.stats;

@@ -78,11 +78,13 @@ class LidarInertialOdometry {
   void addScan(Scan scan);
   /// End of the log: processes what the IMU covers and flushes the window.
   void finish();
-  /// Moves the odometry into a corrected world frame: every state of the
-  /// window (poses, velocities) and the local map are mapped by
-  /// T_corrected_old (x_corrected = T_corrected_old * x_old), so the odometry
-  /// continues from the corrected state. Results emitted afterwards are in
-  /// the corrected frame. The back end calls this after a graph optimisation.
+  /// Moves the odometry into a corrected world frame: results emitted
+  /// afterwards (every state still in the window and every later one) are
+  /// mapped by T_corrected_old (x_corrected = T_corrected_old * x_old), so the
+  /// odometry continues from the corrected state. The local map and the
+  /// window keep their own (map) frame, in which gravity's direction is
+  /// estimated; the correction is composed with the output transform. The
+  /// back end calls this after a graph optimisation.
   void applyCorrection(const Pose& T_corrected_old);
 
   const OdometryDrops& drops() const { return drops_; }
@@ -111,6 +113,10 @@ class LidarInertialOdometry {
   VoxelMap plane_map_;
   VoxelMap edge_map_;
   Eigen::Vector3d last_map_trim_position_ = Eigen::Vector3d::Zero();
+  /// Tilt of gravity in the map frame (ImuGravityFactor): g = Exp([t, 0]) (0, 0, -|g|).
+  double tilt_[2] = {0.0, 0.0};
+  /// Back-end corrections (applyCorrection), applied to the levelled output.
+  Pose T_output_corrected_;
   OdometryDrops drops_;
 };
 

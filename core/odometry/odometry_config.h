@@ -22,8 +22,10 @@ struct OdometryConfig {
   double line_eigen_ratio = 3.0;        ///< a line's neighbours: largest eigenvalue > ratio x second [-]
   double max_point_distance = 1.0;      ///< matches farther than this from their plane/line
                                         ///< at the predicted pose are rejected [m]
-  double point_sigma = 0.05;       ///< uncertainty of a feature point and its fitted plane/line [m]
-  double huber_width = 0.1;        ///< robust (Huber) loss: quadratic up to this distance [m]
+  double point_sigma = 0.03;       ///< uncertainty of a feature point and its fitted plane/line [m]
+                                   ///< (a VLP-16-class LiDAR's range accuracy)
+  double huber_threshold = 1.345;  ///< robust (Huber) loss on the whitened residual |r| / sigma:
+                                   ///< quadratic up to this many standard deviations [-]
   double degenerate_translation_std = 0.02;  ///< LiDAR-only std above which a direction is
                                              ///< reported degenerate [m]
   double degenerate_rotation_std = 0.005;    ///< same for rotations [rad]

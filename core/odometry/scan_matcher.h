@@ -33,6 +33,7 @@ enum class MatchReject : std::uint8_t {
   kNotPlanar,             ///< neighbours do not fit a plane within plane_fit_tolerance
   kNotALine,              ///< neighbours are not elongated enough for a line
   kTooFar,                ///< point farther than max_point_distance from its plane/line
+  kOtherSide,             ///< point seen from the other side of the plane than its map points
   kCount
 };
 const char* toString(MatchReject reason);
@@ -48,9 +49,17 @@ struct MatchResult {
 /// sigma^2 = point_sigma^2 + thickness^2, so a poor fit counts less.
 /// Associates planar features with `plane_map` and edge features with
 /// `edge_map` (both world frame), features given in the IMU frame at T_world_imu.
+///
+/// Surfaces are seen from one side. When the map points keep their view
+/// directions (VoxelMap::insert with a sensor position), the fitted normal is
+/// oriented towards the sensors that saw them, and a feature whose own sensor
+/// (at `sensor_imu`, the LiDAR's position in the IMU frame) lies behind that
+/// plane is rejected (MatchReject::kOtherSide): it belongs to the other face
+/// of a slab or wall, a thickness away, not to this plane.
 MatchResult matchFeatures(const std::vector<Eigen::Vector3d>& planes_imu,
                           const std::vector<Eigen::Vector3d>& edges_imu, const Pose& T_world_imu,
                           const VoxelMap& plane_map, const VoxelMap& edge_map,
-                          const OdometryConfig& config);
+                          const OdometryConfig& config,
+                          const Eigen::Vector3d& sensor_imu = Eigen::Vector3d::Zero());
 
 }  // namespace storey

@@ -25,21 +25,33 @@ VoxelMap::Key VoxelMap::keyOf(const Eigen::Vector3f& p) const {
   return keyOf(c.x(), c.y(), c.z());
 }
 
-void VoxelMap::insert(const std::vector<Eigen::Vector3f>& points_world) {
+void VoxelMap::insertPoint(const Eigen::Vector3f& p, const Eigen::Vector3f& view) {
+  if (!p.allFinite()) return;
   const float min_spacing_squared =
       static_cast<float>(config_.min_point_spacing * config_.min_point_spacing);
   const std::size_t capacity = static_cast<std::size_t>(std::max(config_.max_points_per_voxel, 1));
+  std::vector<MapPoint>& voxel = voxels_[keyOf(p)];
+  if (voxel.size() >= capacity) return;
+  const bool too_close = std::any_of(voxel.begin(), voxel.end(), [&](const MapPoint& q) {
+    return (q.p - p).squaredNorm() < min_spacing_squared;
+  });
+  if (too_close) return;
+  if (voxel.empty()) voxel.reserve(capacity);
+  voxel.push_back({p, view});
+  ++point_count_;
+}
+
+void VoxelMap::insert(const std::vector<Eigen::Vector3f>& points_world) {
+  for (const Eigen::Vector3f& p : points_world) insertPoint(p, Eigen::Vector3f::Zero());
+}
+
+void VoxelMap::insert(const std::vector<Eigen::Vector3f>& points_world,
+                      const Eigen::Vector3d& sensor_world) {
+  const Eigen::Vector3f sensor = sensor_world.cast<float>();
   for (const Eigen::Vector3f& p : points_world) {
-    if (!p.allFinite()) continue;
-    std::vector<Eigen::Vector3f>& voxel = voxels_[keyOf(p)];
-    if (voxel.size() >= capacity) continue;
-    const bool too_close = std::any_of(voxel.begin(), voxel.end(), [&](const Eigen::Vector3f& q) {
-      return (q - p).squaredNorm() < min_spacing_squared;
-    });
-    if (too_close) continue;
-    if (voxel.empty()) voxel.reserve(capacity);
-    voxel.push_back(p);
-    ++point_count_;
+    const Eigen::Vector3f to_sensor = sensor - p;
+    const float norm = to_sensor.norm();
+    insertPoint(p, norm > 1e-6f ? Eigen::Vector3f(to_sensor / norm) : Eigen::Vector3f::Zero());
   }
 }
 
@@ -47,7 +59,7 @@ void VoxelMap::removeFar(const Eigen::Vector3d& sensor_world) {
   const double max_squared = config_.max_range * config_.max_range;
   for (auto it = voxels_.begin(); it != voxels_.end();) {
     const bool far = !it->second.empty() &&
-                     (it->second.front().cast<double>() - sensor_world).squaredNorm() > max_squared;
+                     (it->second.front().p.cast<double>() - sensor_world).squaredNorm() > max_squared;
     if (far || it->second.empty()) {
       point_count_ -= it->second.size();
       it = voxels_.erase(it);
@@ -58,24 +70,24 @@ void VoxelMap::removeFar(const Eigen::Vector3d& sensor_world) {
 }
 
 void VoxelMap::transform(const Pose& T) {
-  std::vector<Eigen::Vector3f> points;
+  std::vector<MapPoint> points;
   points.reserve(point_count_);
   const Eigen::Matrix3f R = T.rotationMatrix().cast<float>();
   const Eigen::Vector3f t = T.translation().cast<float>();
   for (const auto& [key, voxel] : voxels_)
-    for (const Eigen::Vector3f& p : voxel) points.push_back(R * p + t);
+    for (const MapPoint& m : voxel) points.push_back({R * m.p + t, R * m.view});
   voxels_.clear();
   point_count_ = 0;
-  insert(points);
+  for (const MapPoint& m : points) insertPoint(m.p, m.view);
 }
 
 int VoxelMap::nearest(const Eigen::Vector3f& query, int k, float max_distance,
-                      Eigen::Vector3f* out) const {
+                      Eigen::Vector3f* out, Eigen::Vector3f* views_out) const {
   k = std::clamp(k, 0, kMaxNeighbours);
   if (k == 0) return 0;
   // Insertion into a small sorted array: k is tiny, the candidates a few hundred.
   float best_d2[kMaxNeighbours];
-  const Eigen::Vector3f* best[kMaxNeighbours];
+  const MapPoint* best[kMaxNeighbours];
   int found = 0;
   float worst = max_distance * max_distance;
   const Eigen::Vector3i c = cellOf(query);
@@ -84,8 +96,8 @@ int VoxelMap::nearest(const Eigen::Vector3f& query, int k, float max_distance,
       for (int dz = -1; dz <= 1; ++dz) {
         const auto it = voxels_.find(keyOf(c.x() + dx, c.y() + dy, c.z() + dz));
         if (it == voxels_.end()) continue;
-        for (const Eigen::Vector3f& p : it->second) {
-          const float d2 = (p - query).squaredNorm();
+        for (const MapPoint& m : it->second) {
+          const float d2 = (m.p - query).squaredNorm();
           if (d2 > worst) continue;
           int i = found < k ? found++ : k - 1;
           while (i > 0 && best_d2[i - 1] > d2) {
@@ -94,13 +106,15 @@ int VoxelMap::nearest(const Eigen::Vector3f& query, int k, float max_distance,
             --i;
           }
           best_d2[i] = d2;
-          best[i] = &p;
+          best[i] = &m;
           if (found == k) worst = best_d2[k - 1];
         }
       }
     }
   }
-  for (int i = 0; i < found; ++i) out[i] = *best[i];
+  for (int i = 0; i < found; ++i) out[i] = best[i]->p;
+  if (views_out)
+    for (int i = 0; i < found; ++i) views_out[i] = best[i]->view;
   return found;
 }
 

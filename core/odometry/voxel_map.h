@@ -5,6 +5,12 @@
 /// point among the 27 voxels around it. Voxels far from the sensor are
 /// dropped, so memory is bounded by the map's extent around the sensor, not
 /// by the log's length (the idea of iVox, Faster-LIO, and of KISS-ICP's map).
+///
+/// Each point may keep the unit direction from it towards the sensor that
+/// observed it (its view direction). A surface is seen from one side only:
+/// the two faces of a floor slab or of a wall are parallel planes a slab or a
+/// wall thickness apart, and without the view direction a point on one face
+/// cannot be told from a point on the other (scan_matcher.h).
 #include <Eigen/Core>
 #include <cstdint>
 #include <unordered_map>
@@ -25,8 +31,11 @@ class VoxelMap {
  public:
   explicit VoxelMap(const VoxelMapConfig& config);
 
-  /// Adds points (world frame).
+  /// Adds points (world frame) without a view direction (stored as zero).
   void insert(const std::vector<Eigen::Vector3f>& points_world);
+  /// Adds points (world frame) observed from `sensor_world`: each keeps its
+  /// unit direction towards the sensor.
+  void insert(const std::vector<Eigen::Vector3f>& points_world, const Eigen::Vector3d& sensor_world);
   /// Drops every voxel whose centre is farther than config.max_range from `sensor_world`.
   void removeFar(const Eigen::Vector3d& sensor_world);
 
@@ -35,11 +44,13 @@ class VoxelMap {
   /// not exceed the voxel size.
   std::vector<Eigen::Vector3f> nearest(const Eigen::Vector3f& query, int k, float max_distance) const;
   /// Same without allocation: writes up to min(k, kMaxNeighbours) points to
-  /// `out`, nearest first, and returns how many.
+  /// `out`, nearest first, and returns how many; with `views_out`, also their
+  /// view directions (zero when unknown).
   static constexpr int kMaxNeighbours = 16;
-  int nearest(const Eigen::Vector3f& query, int k, float max_distance, Eigen::Vector3f* out) const;
+  int nearest(const Eigen::Vector3f& query, int k, float max_distance, Eigen::Vector3f* out,
+              Eigen::Vector3f* views_out = nullptr) const;
 
-  /// Maps every point by T (x -> T * x) and rebuilds the hash.
+  /// Maps every point by T (x -> T * x, views rotated) and rebuilds the hash.
   void transform(const Pose& T);
 
   std::size_t pointCount() const { return point_count_; }
@@ -51,10 +62,15 @@ class VoxelMap {
   Key keyOf(const Eigen::Vector3f& p) const;
   Key keyOf(std::int64_t x, std::int64_t y, std::int64_t z) const;
   Eigen::Vector3i cellOf(const Eigen::Vector3f& p) const;
+  struct MapPoint {
+    Eigen::Vector3f p;
+    Eigen::Vector3f view;  ///< unit direction towards the observing sensor, or zero
+  };
+  void insertPoint(const Eigen::Vector3f& p, const Eigen::Vector3f& view);
 
   VoxelMapConfig config_;
   float inverse_size_;
-  std::unordered_map<Key, std::vector<Eigen::Vector3f>> voxels_;
+  std::unordered_map<Key, std::vector<MapPoint>> voxels_;
   std::size_t point_count_ = 0;
 };
 

@@ -95,6 +95,7 @@ TEST(Features, PlanarPointsLieOnSurfacesAndEdgesNearCorners) {
   FeatureConfig config;
   config.plane_voxel_size = 0.0;  // keep the raw planar points to check them one by one
   config.edge_voxel_size = 0.0;
+  config.max_edges_per_sector = 20;  // the odometry's default is planar features only
   const FeatureSet features = extractFeatures(scan, config);
   ASSERT_GT(features.planes.size(), 5000u);
   ASSERT_GT(features.edges.size(), 20u);

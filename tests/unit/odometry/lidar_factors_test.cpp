@@ -75,5 +75,26 @@ TEST(LidarFactors, ResidualsAreWeightedDistances) {
   EXPECT_NEAR(Eigen::Map<Eigen::Vector3d>(r3).norm(), 2.0 * std::sqrt(13.0), 1e-12);
 }
 
+
+TEST(LidarFactors, HuberWeightIsOnTheWhitenedDistance) {
+  // Identity pose; two points 0.05 m and 0.1 m above the plane z = 0, sigma 0.05:
+  // whitened 1 (inside the Huber threshold 1.345) and 2 (weight 1.345 / 2).
+  std::array<double, 7> pose{0, 0, 0, 0, 0, 0, 1};
+  MatchResult matches;
+  matches.planes.push_back({Eigen::Vector3d(0, 0, 0.05), Eigen::Vector3d::UnitZ(), 0.0, 0.05});
+  matches.planes.push_back({Eigen::Vector3d(0, 0, 0.1), Eigen::Vector3d::UnitZ(), 0.0, 0.05});
+  const ScanResidualsFactor factor(matches, pose.data(), 1.345);
+  const double* parameters[] = {pose.data()};
+  double r[2];
+  ASSERT_TRUE(factor.Evaluate(parameters, r, nullptr));
+  EXPECT_NEAR(r[0], 1.0, 1e-12);
+  EXPECT_NEAR(r[1], std::sqrt(1.345 / 2.0) * 2.0, 1e-12);
+  // The same distance with a 4x larger sigma (a thick fit) is not down-weighted.
+  matches.planes[1].sigma = 0.2;
+  const ScanResidualsFactor wide(matches, pose.data(), 1.345);
+  ASSERT_TRUE(wide.Evaluate(parameters, r, nullptr));
+  EXPECT_NEAR(r[1], 0.5, 1e-12);
+}
+
 }  // namespace
 }  // namespace storey

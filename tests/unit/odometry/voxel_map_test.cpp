@@ -1,5 +1,7 @@
 #include "odometry/voxel_map.h"
 
+#include "odometry/scan_matcher.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -65,6 +67,54 @@ TEST(VoxelMap, PlaneAndLineFits) {
   ASSERT_TRUE(fit.valid);
   EXPECT_NEAR(std::abs(fit.direction.z()), 1.0, 1e-4);
   EXPECT_FALSE(fitLine({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}}, 3.0).valid);
+}
+
+
+TEST(VoxelMap, KeepsViewDirectionsTowardsTheSensor) {
+  VoxelMapConfig config;
+  config.min_point_spacing = 0.0;
+  VoxelMap map(config);
+  map.insert({{1.0f, 0.0f, 0.0f}}, Eigen::Vector3d(1.0, 0.0, 2.0));  // seen from 2 m above
+  map.insert({{1.2f, 0.0f, 0.0f}});                                  // no sensor: no view
+  Eigen::Vector3f points[2], views[2];
+  ASSERT_EQ(map.nearest({1.0f, 0.0f, 0.0f}, 2, 0.5f, points, views), 2);
+  EXPECT_TRUE(views[0].isApprox(Eigen::Vector3f::UnitZ()));
+  EXPECT_TRUE(views[1].isZero());
+  // A rotation of the map rotates the views with the points.
+  map.transform(Pose(Eigen::Quaterniond(Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitX())),
+                     Eigen::Vector3d(0, 0, 5)));
+  ASSERT_EQ(map.nearest({1.0f, 0.0f, 5.0f}, 1, 0.1f, points, views), 1);
+  EXPECT_TRUE(views[0].isApprox(-Eigen::Vector3f::UnitY(), 1e-6f)) << views[0].transpose();
+}
+
+// A floor slab 0.25 m thick: its underside (z = -0.25) was mapped from the
+// storey below. A point of its top face (z = 0) seen from above lies within
+// the neighbour radius of the underside's points, which fit a plane: without
+// the view directions it would be matched to the underside, a slab thickness
+// away (the odometry then slid down by the slab thickness at stair landings).
+TEST(ScanMatcher, RejectsPointsSeenFromTheOtherSideOfASlab) {
+  std::vector<Eigen::Vector3f> underside;
+  for (int i = -3; i <= 3; ++i)
+    for (int j = -3; j <= 3; ++j) underside.emplace_back(0.1f * i, 0.1f * j, -0.25f);
+  OdometryConfig config;
+  VoxelMap with_views(config.local_map), without_views(config.local_map);
+  with_views.insert(underside, Eigen::Vector3d(0.0, 0.0, -1.5));  // seen from below
+  without_views.insert(underside);
+  const VoxelMap no_edges(config.local_map);
+  const std::vector<Eigen::Vector3d> top_point{{0.02, 0.01, 0.0}};  // IMU frame = world here
+
+  // Sensor above the slab (the point's own view): the underside is the other side.
+  const Eigen::Vector3d sensor_above(0.0, 0.0, 1.0);
+  MatchResult m = matchFeatures(top_point, {}, Pose(), with_views, no_edges, config, sensor_above);
+  EXPECT_TRUE(m.planes.empty());
+  EXPECT_EQ(m.rejected[static_cast<std::size_t>(MatchReject::kOtherSide)], 1);
+  // Seen from below, the same point is on the mapped side and matches.
+  m = matchFeatures(top_point, {}, Pose(), with_views, no_edges, config, Eigen::Vector3d(0, 0, -1));
+  ASSERT_EQ(m.planes.size(), 1u);
+  EXPECT_NEAR(std::abs(m.planes[0].n_world.z()), 1.0, 1e-6);
+  // A map without view directions cannot tell (the old behaviour).
+  m = matchFeatures(top_point, {}, Pose(), without_views, no_edges, config, sensor_above);
+  EXPECT_EQ(m.planes.size(), 1u);
 }
 
 }  // namespace
