@@ -81,7 +81,9 @@ ImuInitResult initializeImuFromStill(const std::vector<ImuSample>& samples, cons
                config.noise_margin * noise.accel_noise_density * std::sqrt(3.0 * rate));
 
   const std::string head = "the first " + window_text + " of IMU data are not still: ";
-  const std::string fix = "; give an initial state or start the recording with the sensor at rest";
+  const std::string fix =
+      "; Storey initialises gravity and the gyro bias from a still start: record the first " +
+      window_text + " with the sensor at rest (limits: odometry.imu_init in the config)";
   if (stats.gyro_std > stats.gyro_std_limit) {
     throw Error(head + "gyro std " + fmt(stats.gyro_std) + " rad/s > " + fmt(stats.gyro_std_limit) +
                 " rad/s" + fix);

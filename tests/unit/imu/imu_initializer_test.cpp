@@ -135,7 +135,7 @@ TEST(ImuInitializer, WalkingStartIsAnErrorThatSaysWhatToDo) {
   EXPECT_NE(msg.find("the first 1 s of IMU data are not still: gyro std"), std::string::npos)
       << msg;
   EXPECT_NE(msg.find("rad/s >"), std::string::npos) << msg;
-  EXPECT_NE(msg.find("give an initial state or start the recording with the sensor at rest"),
+  EXPECT_NE(msg.find("record the first 1 s with the sensor at rest"),
             std::string::npos)
       << msg;
 }
