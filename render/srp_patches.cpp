@@ -5,6 +5,8 @@
 #include <cstdint>
 #include <unordered_map>
 
+#include "backend/plane_hull.h"
+
 namespace storey::render {
 namespace {
 
@@ -38,7 +40,7 @@ FlatPatch flatten(const WorldPatch& p, double margin) {
     pts.emplace_back((h - f.origin).dot(f.u), (h - f.origin).dot(f.v));
     f.box.extend(h);
   }
-  f.polygon = convexHull2d(pts);
+  f.polygon = backend::convexHull(pts);
   f.box.min().array() -= margin;
   f.box.max().array() += margin;
   f.plane_id = p.plane_id;
@@ -66,29 +68,6 @@ void planeBasis(const Eigen::Vector3d& n, Eigen::Vector3d& u, Eigen::Vector3d& v
       std::abs(n.z()) < 0.9 ? Eigen::Vector3d::UnitZ() : Eigen::Vector3d::UnitX();
   u = n.cross(a).normalized();
   v = n.cross(u).normalized();
-}
-
-std::vector<Eigen::Vector2d> convexHull2d(std::vector<Eigen::Vector2d> p) {
-  std::sort(p.begin(), p.end(), [](const auto& a, const auto& b) {
-    return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y());
-  });
-  p.erase(std::unique(p.begin(), p.end()), p.end());
-  if (p.size() < 3) return p;
-  auto cross = [](const Eigen::Vector2d& o, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
-    return (a.x() - o.x()) * (b.y() - o.y()) - (a.y() - o.y()) * (b.x() - o.x());
-  };
-  std::vector<Eigen::Vector2d> h(2 * p.size());
-  std::size_t k = 0;
-  for (std::size_t i = 0; i < p.size(); ++i) {
-    while (k >= 2 && cross(h[k - 2], h[k - 1], p[i]) <= 0) --k;
-    h[k++] = p[i];
-  }
-  for (std::size_t i = p.size() - 1, t = k + 1; i > 0; --i) {
-    while (k >= t && cross(h[k - 2], h[k - 1], p[i - 1]) <= 0) --k;
-    h[k++] = p[i - 1];
-  }
-  h.resize(k - 1);
-  return h;
 }
 
 PatchSet worldPatches(const RunData& run, double point_distance, double fallback_radius) {
@@ -163,7 +142,7 @@ PatchSet worldPatches(const RunData& run, double point_distance, double fallback
             }
         p.estimated = true;
       }
-      const std::vector<Eigen::Vector2d> hull = convexHull2d(flat);
+      const std::vector<Eigen::Vector2d> hull = backend::convexHull(flat);
       if (hull.size() < 3) {
         ++out.skipped;
         continue;

@@ -38,9 +38,6 @@ PatchSet worldPatches(const RunData& run, double point_distance, double fallback
 std::vector<int> srpOfPoints(const MapSample& map, const std::vector<WorldPatch>& patches,
                              double point_distance, const std::vector<int>& use = {});
 
-/// 2D convex hull (Andrew's monotone chain), counter-clockwise.
-std::vector<Eigen::Vector2d> convexHull2d(std::vector<Eigen::Vector2d> points);
-
 /// Orthonormal basis (u, v) of the plane with normal n.
 void planeBasis(const Eigen::Vector3d& n, Eigen::Vector3d& u, Eigen::Vector3d& v);
 

@@ -12,7 +12,8 @@ double cross(const Eigen::Vector2d& o, const Eigen::Vector2d& a, const Eigen::Ve
   return (a - o).x() * (b - o).y() - (a - o).y() * (b - o).x();
 }
 
-/// Andrew's monotone chain; counter-clockwise, no collinear vertices.
+}  // namespace
+
 std::vector<Eigen::Vector2d> convexHull(std::vector<Eigen::Vector2d> p) {
   std::sort(p.begin(), p.end(), [](const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
     return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y());
@@ -33,8 +34,6 @@ std::vector<Eigen::Vector2d> convexHull(std::vector<Eigen::Vector2d> p) {
   if (hull.size() < 3) return {};
   return hull;
 }
-
-}  // namespace
 
 std::vector<Eigen::Vector3d> planeHull(const std::vector<Eigen::Vector3d>& points,
                                        const Plane& plane, int max_vertices) {

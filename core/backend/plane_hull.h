@@ -9,6 +9,11 @@
 
 namespace storey::backend {
 
+/// Convex hull of points in a plane (Andrew's monotone chain):
+/// counter-clockwise, no collinear vertices; empty for fewer than 3
+/// distinct, non-collinear points.
+std::vector<Eigen::Vector2d> convexHull(std::vector<Eigen::Vector2d> points);
+
 /// Convex hull of `points` projected onto `plane`, counter-clockwise seen
 /// from the side the normal points to, as 3D points on the plane (same frame
 /// as the input). When the hull has more than `max_vertices` (>= 3) vertices,
