@@ -16,7 +16,8 @@ struct OdometryConfig {
   int window_size = 3;             ///< states optimised together (oldest held fixed) [>= 2]
   int matching_rounds = 2;         ///< feature association rounds per scan [>= 1]
   int max_iterations = 4;          ///< Ceres iterations per round [>= 1]
-  int neighbours = 5;              ///< map points used to fit a plane or a line [>= 3]
+  int neighbours = 8;              ///< map points used to fit a plane or a line [>= 3]
+                                   ///< (5 fitted false planes across stair steps: odometry.md)
   double max_neighbour_distance = 0.5;  ///< farthest map neighbour of a feature [m]
   double plane_fit_tolerance = 0.05;    ///< every neighbour within this of its plane [m]
   double line_eigen_ratio = 3.0;        ///< a line's neighbours: largest eigenvalue > ratio x second [-]
