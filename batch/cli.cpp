@@ -96,6 +96,8 @@ int main(int argc, char** argv) {
   eval_cmd->add_option("--storeys", eval.storeys_path, "true storey elevations (YAML)");
   eval_cmd->add_option("--est-storeys", eval.est_storeys_path,
                        "estimated storeys.json (default: storeys.json next to --est)");
+  eval_cmd->add_option("--planes", eval.planes_path,
+                       "planes.json of the run: plane associations checked with the true poses");
   eval_cmd->add_option("--json", eval.json_path,
                        "JSON result file (default: <est>.eval.json; 'none': no file; '-': stdout)");
   eval_cmd->add_option("--rpe-length", eval.rpe_lengths, "RPE segment length [m], repeatable")

@@ -35,6 +35,7 @@ int runEval(const EvalOptions& options) {
   inputs.map_path = options.map_path;
   inputs.true_storeys_path = options.storeys_path;
   inputs.estimated_storeys_path = options.est_storeys_path;
+  inputs.planes_path = options.planes_path;
   if (inputs.estimated_storeys_path.empty() && !inputs.true_storeys_path.empty())
     inputs.estimated_storeys_path = defaultEstimatedStoreys(options.est_path);
 

@@ -51,6 +51,7 @@ struct SimulateOptions {
 struct EvalOptions {
   std::string gt_path, est_path, mesh_path, map_path, storeys_path;
   std::string est_storeys_path;  ///< --est-storeys: estimated storeys.json; empty = storeys.json next to --est
+  std::string planes_path;       ///< --planes: planes.json whose associations are checked with the truth
   std::string json_path;         ///< --json: empty = <est stem>.eval.json next to --est; "none" = no file; "-" = JSON on stdout
   std::vector<double> rpe_lengths{10.0};  ///< --rpe-length (repeatable): RPE segment lengths [m]
   double max_time_difference = 0.01;      ///< --max-dt: timestamp tolerance of the association [s]

@@ -27,6 +27,10 @@ struct SrpExtractionConfig {
   double min_range = 0.5;             ///< scan points nearer than this are ignored [m]
   double max_range = 30.0;            ///< scan points farther than this are ignored [m]
   double min_extent = 1.0;            ///< a plane's inliers span at least this (2nd axis, 4 std) [m]
+  double min_view_angle_deg = 1.0;    ///< median angle between the beams and the plane at least
+                                      ///< this, and the plane at least 3 ransac_distance from the
+                                      ///< sensor: else it is the sensor's own beam cone on the
+                                      ///< walls around it, not a surface [deg, [0, 45); 0 = off]
   double point_sigma = 0.02;          ///< range noise assumed in the plane uncertainty [m, > 0]
   int max_effective_points = 100;     ///< points counted as independent in the uncertainty
                                       ///< (errors of a scan are correlated) [>= 3]

@@ -20,6 +20,7 @@ const char* toString(PlaneReject reason) {
   switch (reason) {
     case PlaneReject::kTooFewPoints: return "too_few_points";
     case PlaneReject::kTooSmall: return "too_small_extent";
+    case PlaneReject::kEdgeOn: return "seen_edge_on";
     case PlaneReject::kNotOrthogonal: return "not_orthogonal_to_larger_planes";
     case PlaneReject::kBeyondMaxSrps: return "beyond_max_srps";
     case PlaneReject::kCount: break;
@@ -121,6 +122,26 @@ bool ransacPlane(const std::vector<Eigen::Vector3f>& points, const std::vector<i
 
 }  // namespace
 
+/// A plane at distance d from the sensor is seen under the angle asin(d / r)
+/// at range r. The near-horizontal beams (+-1 deg, +-3 deg of a VLP-16)
+/// trace flat cones on the walls around the sensor, and within the RANSAC
+/// distance their points look like a large plane through (or within a
+/// RANSAC band of) the sensor. Such a "plane" is seen edge-on: it passes
+/// within three RANSAC distances of the sensor, or the median of the angle
+/// over its inliers is below `min_angle_deg` (a farther, larger cone). A
+/// real surface is not seen edge-on from everywhere.
+bool seenEdgeOn(const DetectedPlane& plane, const std::vector<Eigen::Vector3d>& inliers,
+                double min_angle_deg, double ransac_distance) {
+  if (min_angle_deg <= 0.0 || inliers.empty()) return false;
+  if (plane.plane.distance() < 3.0 * ransac_distance) return true;
+  std::vector<double> ranges;
+  ranges.reserve(inliers.size());
+  for (const auto& p : inliers) ranges.push_back(p.norm());
+  auto middle = ranges.begin() + static_cast<std::ptrdiff_t>(ranges.size() / 2);
+  std::nth_element(ranges.begin(), middle, ranges.end());
+  return plane.plane.distance() < *middle * std::sin(min_angle_deg * M_PI / 180.0);
+}
+
 SrpExtractionResult extractSrps(const std::vector<Eigen::Vector3f>& all_points,
                                 const SrpExtractionConfig& config) {
   SrpExtractionResult result;
@@ -186,6 +207,10 @@ SrpExtractionResult extractSrps(const std::vector<Eigen::Vector3f>& all_points,
     }
     if (plane.extent < config.min_extent) {
       ++result.rejects[static_cast<int>(PlaneReject::kTooSmall)];
+      continue;
+    }
+    if (seenEdgeOn(plane, inliers, config.min_view_angle_deg, config.ransac_distance)) {
+      ++result.rejects[static_cast<int>(PlaneReject::kEdgeOn)];
       continue;
     }
     plane.hull = planeHull(inliers, plane.plane);

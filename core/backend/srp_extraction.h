@@ -29,7 +29,7 @@ struct DetectedPlane {
 };
 
 /// Why a detected plane did not become an SRP.
-enum class PlaneReject { kTooFewPoints, kTooSmall, kNotOrthogonal, kBeyondMaxSrps, kCount };
+enum class PlaneReject { kTooFewPoints, kTooSmall, kEdgeOn, kNotOrthogonal, kBeyondMaxSrps, kCount };
 const char* toString(PlaneReject reason);
 
 struct SrpExtractionResult {

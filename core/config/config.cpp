@@ -127,6 +127,7 @@ void visitBackend(V& v, BackendConfig& c) {
     e.field("min_range", x.min_range);
     e.field("max_range", x.max_range);
     e.field("min_extent", x.min_extent);
+    e.field("min_view_angle_deg", x.min_view_angle_deg);
     e.field("point_sigma", x.point_sigma);
     e.field("max_effective_points", x.max_effective_points);
   });

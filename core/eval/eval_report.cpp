@@ -65,7 +65,8 @@ std::string evaluationJson(const EvaluationResult& result) {
                     {"mesh", pathOrNull(result.inputs.mesh_path)},
                     {"map", pathOrNull(result.inputs.map_path)},
                     {"true_storeys", pathOrNull(result.inputs.true_storeys_path)},
-                    {"estimated_storeys", pathOrNull(result.inputs.estimated_storeys_path)}};
+                    {"estimated_storeys", pathOrNull(result.inputs.estimated_storeys_path)},
+                    {"planes", pathOrNull(result.inputs.planes_path)}};
   root["association"] = {{"gt_poses", t.gt_poses},
                          {"est_poses", t.est_poses},
                          {"matched", t.matched},
@@ -109,6 +110,27 @@ std::string evaluationJson(const EvaluationResult& result) {
                        {"storeys", storeys}};
   } else {
     root["storeys"] = nullptr;
+  }
+
+  if (result.planes) {
+    const PlaneCheck& p = *result.planes;
+    json wrong = json::array();
+    for (const WrongObservation& w : p.wrong)
+      wrong.push_back({{"plane", w.plane},
+                       {"keyframe", w.keyframe},
+                       {"offset_m", w.offset},
+                       {"normal_angle_deg", w.angle_deg},
+                       {"down_weighted", w.down_weighted}});
+    root["planes"] = {{"planes", p.planes},
+                      {"observations", p.observations},
+                      {"down_weighted", p.down_weighted},
+                      {"off_their_plane", p.wrong.size()},
+                      {"off_their_plane_not_down_weighted", p.wrongNotDownWeighted()},
+                      {"max_offset_m", p.max_offset},
+                      {"max_normal_angle_deg", p.max_angle_deg},
+                      {"observations_off_their_plane", wrong}};
+  } else {
+    root["planes"] = nullptr;
   }
 
   if (result.map) {
@@ -189,6 +211,17 @@ std::string evaluationTable(const EvaluationResult& result) {
       else
         out += format("  %4d %8.3f     -        -          -\n", m.true_index, m.true_elevation);
     }
+  }
+
+  if (result.planes) {
+    const PlaneCheck& p = *result.planes;
+    out += format("\nPlane associations under the true poses: %zu planes, %zu observations, "
+                  "%zu down-weighted\n  off their plane (> %.2f m or > %.1f deg): %zu, of them not down-weighted: %zu\n",
+                  p.planes, p.observations, p.down_weighted, p.max_offset, p.max_angle_deg,
+                  p.wrong.size(), p.wrongNotDownWeighted());
+    for (const WrongObservation& w : p.wrong)
+      out += format("  plane %d keyframe %d: offset %+.3f m, normal %.1f deg%s\n", w.plane,
+                    w.keyframe, w.offset, w.angle_deg, w.down_weighted ? " (down-weighted)" : "");
   }
 
   if (result.map) {

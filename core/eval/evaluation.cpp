@@ -125,6 +125,13 @@ EvaluationResult evaluate(const EvaluationInputs& inputs, const EvaluationConfig
   } else {
     result.map = evaluateMap(inputs.mesh_path, inputs.map_path, config);
   }
+  if (inputs.planes_path.empty()) {
+    result.notes.push_back("planes: skipped (no planes.json given)");
+  } else {
+    PlaneCheckOptions options = config.plane_check;
+    options.max_time_difference = config.association.max_time_difference;
+    result.planes = checkPlanes(inputs.planes_path, gt, options);
+  }
   return result;
 }
 

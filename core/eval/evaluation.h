@@ -12,6 +12,7 @@
 #include "eval/association.h"
 #include "eval/ate.h"
 #include "eval/error_stats.h"
+#include "eval/plane_check.h"
 #include "eval/rpe.h"
 #include "eval/storey_error.h"
 #include "trajectory/drift.h"
@@ -26,6 +27,7 @@ struct EvaluationConfig {
   bool mesh_returning_faces_only = true;  ///< leave out faces with `returns` 0 (glass)
   double storey_match_gate = 1.0;         ///< largest floor elevation difference matched [m]
   int threads = 0;                        ///< map distance threads; 0 = all cores
+  PlaneCheckOptions plane_check;
   void validate() const;                  ///< storey::Error naming the bad field
 };
 
@@ -36,6 +38,7 @@ struct EvaluationInputs {
   std::string map_path;                ///< map point cloud, PLY (with mesh_path)
   std::string true_storeys_path;       ///< storeys.yaml of the simulator
   std::string estimated_storeys_path;  ///< storeys.json of `storey run`
+  std::string planes_path;             ///< planes.json of `storey run`: associations checked
 };
 
 struct TrajectoryEvaluation {
@@ -66,6 +69,7 @@ struct EvaluationResult {
   TrajectoryEvaluation trajectory;
   std::optional<StoreyComparison> storeys;
   std::optional<MapEvaluation> map;
+  std::optional<PlaneCheck> planes;
   std::vector<std::string> notes;  ///< parts skipped and why
 };
 

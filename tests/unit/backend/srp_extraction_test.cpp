@@ -138,5 +138,43 @@ TEST(FitPlane, RecoversAKnownPlaneAndItsUncertaintyShrinksWithExtent) {
   EXPECT_GT(small.covariance(0, 0), 4.0 * large.covariance(0, 0));
 }
 
+
+/// A VLP-16-like scan (16 rings, -15 to +15 deg, 0.2 deg azimuth steps) in a
+/// round shaft of radius 1.2 m (no wall is a plane; the floor is out of the
+/// beams' reach): the +-1 deg rings trace z = +-2.1 cm on the wall, 3600
+/// points within the RANSAC distance of the horizontal plane through the
+/// sensor, spread over the whole circle.
+std::vector<Eigen::Vector3f> roundRoomRings() {
+  std::vector<Eigen::Vector3f> pts;
+  for (int ring = 0; ring < 16; ++ring) {
+    const double el = (-15.0 + 2.0 * ring) * M_PI / 180.0;
+    for (int k = 0; k < 1800; ++k) {
+      const double az = k * 0.2 * M_PI / 180.0;
+      const Eigen::Vector3d dir(std::cos(el) * std::cos(az), std::cos(el) * std::sin(az), std::sin(el));
+      pts.push_back((dir * (1.2 / std::cos(el))).cast<float>());
+    }
+  }
+  return pts;
+}
+
+TEST(SrpExtraction, TheSensorsOwnBeamConeIsNoPlane) {
+  const auto pts = roundRoomRings();
+  auto throughSensor = [](const SrpExtractionResult& r) {
+    for (const DetectedPlane& p : r.srps)
+      if (p.plane.distance() < 0.1) return true;
+    return false;
+  };
+  // Fixture check: without the view-angle test, the +-1 deg rings make a
+  // horizontal "plane" through the sensor that passes the point count and
+  // the extent.
+  SrpExtractionConfig no_check;
+  no_check.min_view_angle_deg = 0.0;
+  ASSERT_TRUE(throughSensor(extractSrps(pts, no_check)));
+
+  const SrpExtractionResult r = extractSrps(pts, SrpExtractionConfig{});
+  EXPECT_FALSE(throughSensor(r));
+  EXPECT_GE(r.rejects[static_cast<int>(PlaneReject::kEdgeOn)], 1);
+}
+
 }  // namespace
 }  // namespace storey::backend

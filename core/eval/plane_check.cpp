@@ -1,0 +1,104 @@
+#include "eval/plane_check.h"
+
+#include <Eigen/Core>
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "common/error.h"
+
+namespace storey::eval {
+
+std::size_t PlaneCheck::wrongNotDownWeighted() const {
+  return static_cast<std::size_t>(std::count_if(
+      wrong.begin(), wrong.end(), [](const WrongObservation& w) { return !w.down_weighted; }));
+}
+
+namespace {
+
+Eigen::Vector3d vec3(const nlohmann::json& j, const std::string& what) {
+  if (!j.is_array() || j.size() != 3) throw Error(what + " is not an array of 3 numbers");
+  return {j[0].get<double>(), j[1].get<double>(), j[2].get<double>()};
+}
+
+/// The truth pose nearest to t (the keyframes are scans, stamped like the truth).
+const Pose& truthAt(const Trajectory& gt, double t, double tolerance, const std::string& where) {
+  const auto it = std::lower_bound(gt.begin(), gt.end(), t,
+                                   [](const StampedPose& p, double x) { return p.time < x; });
+  const StampedPose* best = nullptr;
+  if (it != gt.end()) best = &*it;
+  if (it != gt.begin() && (!best || t - std::prev(it)->time < best->time - t)) best = &*std::prev(it);
+  if (!best || std::abs(best->time - t) > tolerance)
+    throw Error(where + ": no true pose within " + std::to_string(tolerance) + " s of t = " +
+                std::to_string(t));
+  return best->pose;
+}
+
+}  // namespace
+
+PlaneCheck checkPlanes(const std::string& planes_path, const Trajectory& gt,
+                       const PlaneCheckOptions& options) {
+  if (!(options.max_offset > 0.0) || !(options.max_angle_deg > 0.0) ||
+      !(options.max_time_difference >= 0.0))
+    throw Error("eval: plane check limits must be positive");
+  std::ifstream in(planes_path);
+  if (!in) throw Error(planes_path + ": cannot open the planes file");
+  nlohmann::json root;
+  try {
+    root = nlohmann::json::parse(in);
+  } catch (const nlohmann::json::exception& e) {
+    throw Error(planes_path + ": not JSON (" + e.what() + ")");
+  }
+  if (!root.is_object() || !root.contains("planes") || !root["planes"].is_array())
+    throw Error(planes_path + ": no 'planes' array (not a planes.json of storey run)");
+  if (gt.empty()) throw Error("eval: the true trajectory is empty");
+
+  PlaneCheck result;
+  result.max_offset = options.max_offset;
+  result.max_angle_deg = options.max_angle_deg;
+  const double cos_max = std::cos(options.max_angle_deg * M_PI / 180.0);
+  try {
+    for (const auto& plane : root["planes"]) {
+      const int id = plane.at("id").get<int>();
+      const std::string where = planes_path + ": plane " + std::to_string(id);
+      const Eigen::Vector3d n_plane = vec3(plane.at("normal"), where + " normal").normalized();
+      const auto& observations = plane.at("observations");
+      struct Placed {
+        Eigen::Vector3d normal_world, centroid_world;
+        int keyframe;
+        bool outlier;
+      };
+      std::vector<Placed> placed;
+      for (const auto& o : observations) {
+        const Pose& T_world_lidar = truthAt(gt, o.at("time").get<double>(),
+                                            options.max_time_difference, where);
+        placed.push_back({T_world_lidar.rotation() * vec3(o.at("normal"), where + " observation normal"),
+                          T_world_lidar * vec3(o.at("centroid"), where + " observation centroid"),
+                          o.at("keyframe").get<int>(), o.at("outlier").get<bool>()});
+      }
+      ++result.planes;
+      if (placed.empty()) continue;
+      std::vector<double> offsets;
+      for (const Placed& p : placed) offsets.push_back(n_plane.dot(p.centroid_world));
+      std::vector<double> sorted = offsets;
+      std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(sorted.size() / 2),
+                       sorted.end());
+      const double median = sorted[sorted.size() / 2];
+      for (std::size_t i = 0; i < placed.size(); ++i) {
+        ++result.observations;
+        result.down_weighted += placed[i].outlier;
+        const double cos_angle = std::min(1.0, std::abs(placed[i].normal_world.dot(n_plane)));
+        const double offset = offsets[i] - median;
+        if (cos_angle < cos_max || std::abs(offset) > options.max_offset)
+          result.wrong.push_back({id, placed[i].keyframe, offset,
+                                  std::acos(cos_angle) * 180.0 / M_PI, placed[i].outlier});
+      }
+    }
+  } catch (const nlohmann::json::exception& e) {
+    throw Error(planes_path + ": " + e.what());
+  }
+  return result;
+}
+
+}  // namespace storey::eval
