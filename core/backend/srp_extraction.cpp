@@ -18,12 +18,18 @@ namespace storey::backend {
 
 const char* toString(PlaneReject reason) {
   switch (reason) {
-    case PlaneReject::kTooFewPoints: return "too_few_points";
-    case PlaneReject::kTooSmall: return "too_small_extent";
-    case PlaneReject::kEdgeOn: return "seen_edge_on";
-    case PlaneReject::kNotOrthogonal: return "not_orthogonal_to_larger_planes";
-    case PlaneReject::kBeyondMaxSrps: return "beyond_max_srps";
-    case PlaneReject::kCount: break;
+    case PlaneReject::kTooFewPoints:
+      return "too_few_points";
+    case PlaneReject::kTooSmall:
+      return "too_small_extent";
+    case PlaneReject::kEdgeOn:
+      return "seen_edge_on";
+    case PlaneReject::kNotOrthogonal:
+      return "not_orthogonal_to_larger_planes";
+    case PlaneReject::kBeyondMaxSrps:
+      return "beyond_max_srps";
+    case PlaneReject::kCount:
+      break;
   }
   return "unknown";
 }
@@ -69,7 +75,8 @@ DetectedPlane fitPlane(const std::vector<Eigen::Vector3d>& inliers,
   info.bottomLeftCorner<1, 2>() = info.topRightCorner<2, 1>().transpose();
   info(2, 2) = count;
   const double sigma = std::max(out.rms, config.point_sigma);
-  const double effective = std::min(count, static_cast<double>(std::max(config.max_effective_points, 3)));
+  const double effective =
+      std::min(count, static_cast<double>(std::max(config.max_effective_points, 3)));
   info *= effective / count / (sigma * sigma);
   out.covariance = info.inverse();
   return out;
@@ -98,7 +105,8 @@ bool ransacPlane(const std::vector<Eigen::Vector3f>& points, const std::vector<i
   pcl::PointCloud<pcl::PointXYZ>::Ptr cloud(new pcl::PointCloud<pcl::PointXYZ>);
   cloud->reserve(std::min(remaining.size(), cap));
   for (double k = 0.0; k < static_cast<double>(remaining.size()); k += stride) {
-    const Eigen::Vector3f& p = points[static_cast<std::size_t>(remaining[static_cast<std::size_t>(k)])];
+    const Eigen::Vector3f& p =
+        points[static_cast<std::size_t>(remaining[static_cast<std::size_t>(k)])];
     cloud->push_back(pcl::PointXYZ(p.x(), p.y(), p.z()));
   }
   if (cloud->size() < 10) return false;
@@ -220,8 +228,9 @@ SrpExtractionResult extractSrps(const std::vector<Eigen::Vector3f>& all_points,
       static_cast<double>(explained_count) / static_cast<double>(points.size());
 
   // The SRPs: the largest planes whose normals are nearly orthogonal to each other.
-  std::stable_sort(accepted.begin(), accepted.end(),
-                   [](const DetectedPlane& a, const DetectedPlane& b) { return a.points > b.points; });
+  std::stable_sort(
+      accepted.begin(), accepted.end(),
+      [](const DetectedPlane& a, const DetectedPlane& b) { return a.points > b.points; });
   const double max_dot = std::sin(config.orthogonal_tolerance_deg * M_PI / 180.0);
   for (const DetectedPlane& plane : accepted) {
     bool orthogonal = true;

@@ -215,10 +215,12 @@ std::string evaluationTable(const EvaluationResult& result) {
 
   if (result.planes) {
     const PlaneCheck& p = *result.planes;
-    out += format("\nPlane associations under the true poses: %zu planes, %zu observations, "
-                  "%zu down-weighted\n  off their plane (> %.2f m or > %.1f deg): %zu, of them not down-weighted: %zu\n",
-                  p.planes, p.observations, p.down_weighted, p.max_offset, p.max_angle_deg,
-                  p.wrong.size(), p.wrongNotDownWeighted());
+    out += format(
+        "\nPlane associations under the true poses: %zu planes, %zu observations, "
+        "%zu down-weighted\n  off their plane (> %.2f m or > %.1f deg): %zu, of them not "
+        "down-weighted: %zu\n",
+        p.planes, p.observations, p.down_weighted, p.max_offset, p.max_angle_deg, p.wrong.size(),
+        p.wrongNotDownWeighted());
     for (const WrongObservation& w : p.wrong)
       out += format("  plane %d keyframe %d: offset %+.3f m, normal %.1f deg%s\n", w.plane,
                     w.keyframe, w.offset, w.angle_deg, w.down_weighted ? " (down-weighted)" : "");

@@ -28,7 +28,7 @@ struct EvaluationConfig {
   double storey_match_gate = 1.0;         ///< largest floor elevation difference matched [m]
   int threads = 0;                        ///< map distance threads; 0 = all cores
   PlaneCheckOptions plane_check;
-  void validate() const;                  ///< storey::Error naming the bad field
+  void validate() const;  ///< storey::Error naming the bad field
 };
 
 struct EvaluationInputs {

@@ -28,10 +28,11 @@ const Pose& truthAt(const Trajectory& gt, double t, double tolerance, const std:
                                    [](const StampedPose& p, double x) { return p.time < x; });
   const StampedPose* best = nullptr;
   if (it != gt.end()) best = &*it;
-  if (it != gt.begin() && (!best || t - std::prev(it)->time < best->time - t)) best = &*std::prev(it);
+  if (it != gt.begin() && (!best || t - std::prev(it)->time < best->time - t))
+    best = &*std::prev(it);
   if (!best || std::abs(best->time - t) > tolerance)
-    throw Error(where + ": no true pose within " + std::to_string(tolerance) + " s of t = " +
-                std::to_string(t));
+    throw Error(where + ": no true pose within " + std::to_string(tolerance) +
+                " s of t = " + std::to_string(t));
   return best->pose;
 }
 
@@ -71,18 +72,20 @@ PlaneCheck checkPlanes(const std::string& planes_path, const Trajectory& gt,
       };
       std::vector<Placed> placed;
       for (const auto& o : observations) {
-        const Pose& T_world_lidar = truthAt(gt, o.at("time").get<double>(),
-                                            options.max_time_difference, where);
-        placed.push_back({T_world_lidar.rotation() * vec3(o.at("normal"), where + " observation normal"),
-                          T_world_lidar * vec3(o.at("centroid"), where + " observation centroid"),
-                          o.at("keyframe").get<int>(), o.at("outlier").get<bool>()});
+        const Pose& T_world_lidar =
+            truthAt(gt, o.at("time").get<double>(), options.max_time_difference, where);
+        placed.push_back(
+            {T_world_lidar.rotation() * vec3(o.at("normal"), where + " observation normal"),
+             T_world_lidar * vec3(o.at("centroid"), where + " observation centroid"),
+             o.at("keyframe").get<int>(), o.at("outlier").get<bool>()});
       }
       ++result.planes;
       if (placed.empty()) continue;
       std::vector<double> offsets;
       for (const Placed& p : placed) offsets.push_back(n_plane.dot(p.centroid_world));
       std::vector<double> sorted = offsets;
-      std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(sorted.size() / 2),
+      std::nth_element(sorted.begin(),
+                       sorted.begin() + static_cast<std::ptrdiff_t>(sorted.size() / 2),
                        sorted.end());
       const double median = sorted[sorted.size() / 2];
       for (std::size_t i = 0; i < placed.size(); ++i) {

@@ -18,23 +18,23 @@
 namespace storey::eval {
 
 struct PlaneCheckOptions {
-  double max_offset = 0.1;     ///< centroid distance from its plane's median [m, > 0]
-  double max_angle_deg = 5.0;  ///< normal angle to the plane's normal [deg, > 0]
+  double max_offset = 0.1;            ///< centroid distance from its plane's median [m, > 0]
+  double max_angle_deg = 5.0;         ///< normal angle to the plane's normal [deg, > 0]
   double max_time_difference = 0.01;  ///< observation stamp to truth stamp [s, >= 0]
 };
 
 struct WrongObservation {
-  int plane = 0;          ///< the plane's id
-  int keyframe = 0;       ///< the observation's keyframe
-  double offset = 0.0;    ///< signed centroid offset from the plane's median [m]
-  double angle_deg = 0.0; ///< normal angle to the plane [deg]
+  int plane = 0;           ///< the plane's id
+  int keyframe = 0;        ///< the observation's keyframe
+  double offset = 0.0;     ///< signed centroid offset from the plane's median [m]
+  double angle_deg = 0.0;  ///< normal angle to the plane [deg]
   bool down_weighted = false;
 };
 
 struct PlaneCheck {
   std::size_t planes = 0, observations = 0;
-  std::size_t down_weighted = 0;  ///< observations the back end flagged `outlier`
-  std::vector<WrongObservation> wrong;  ///< off their plane under the true poses
+  std::size_t down_weighted = 0;                 ///< observations the back end flagged `outlier`
+  std::vector<WrongObservation> wrong;           ///< off their plane under the true poses
   double max_offset = 0.0, max_angle_deg = 0.0;  ///< the limits used
   std::size_t wrongNotDownWeighted() const;
 };

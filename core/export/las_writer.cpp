@@ -2,15 +2,16 @@
 // LAS 1.4 R15 specification; fields used: docs/outputs.md.
 #include <algorithm>
 #include <array>
-#include <limits>
 #include <cmath>
 #include <ctime>
+#include <limits>
 #include <ostream>
 
 #include "common/atomic_file.h"
 #include "common/error.h"
 #include "export/binary_out.h"
 #include "export/point_cloud_writers.h"
+#include "export/point_selection.h"
 
 namespace storey {
 
@@ -23,21 +24,21 @@ using binary::putChars;
 void putExtraBytesDescriptor(std::string& out, std::uint8_t data_type, const std::string& name,
                              const std::string& description, bool has_no_data,
                              std::int64_t no_data) {
-  put<std::uint16_t>(out, 0);                     // reserved
-  put<std::uint8_t>(out, data_type);              // 3 = uint16, 4 = int16, 6 = int32, 1 = uint8
-  put<std::uint8_t>(out, has_no_data ? 1 : 0);    // options: bit 0 no_data is valid
+  put<std::uint16_t>(out, 0);                   // reserved
+  put<std::uint8_t>(out, data_type);            // 3 = uint16, 4 = int16, 6 = int32, 1 = uint8
+  put<std::uint8_t>(out, has_no_data ? 1 : 0);  // options: bit 0 no_data is valid
   putChars(out, name, 32);
-  put<std::uint32_t>(out, 0);                     // unused
+  put<std::uint32_t>(out, 0);                         // unused
   put<std::int64_t>(out, has_no_data ? no_data : 0);  // no_data (anytype, 8 bytes)
-  out.append(16, '\0');                           // deprecated1
-  put<std::int64_t>(out, 0);                      // min
-  out.append(16, '\0');                           // deprecated2
-  put<std::int64_t>(out, 0);                      // max
-  out.append(16, '\0');                           // deprecated3
-  put<double>(out, 0.0);                          // scale (unused: options bit 3 clear)
-  out.append(16, '\0');                           // deprecated4
-  put<double>(out, 0.0);                          // offset (unused: options bit 4 clear)
-  out.append(16, '\0');                           // deprecated5
+  out.append(16, '\0');                               // deprecated1
+  put<std::int64_t>(out, 0);                          // min
+  out.append(16, '\0');                               // deprecated2
+  put<std::int64_t>(out, 0);                          // max
+  out.append(16, '\0');                               // deprecated3
+  put<double>(out, 0.0);                              // scale (unused: options bit 3 clear)
+  out.append(16, '\0');                               // deprecated4
+  put<double>(out, 0.0);                              // offset (unused: options bit 4 clear)
+  out.append(16, '\0');                               // deprecated5
   putChars(out, description, 32);
 }
 
@@ -45,16 +46,17 @@ void putExtraBytesDescriptor(std::string& out, std::uint8_t data_type, const std
 
 void writeLas(const std::string& path, const MapCloud& cloud,
               const std::vector<std::uint32_t>* indices) {
-  const std::size_t n = indices ? indices->size() : cloud.size();
-  auto at = [&](std::size_t k) -> std::size_t { return indices ? (*indices)[k] : k; };
+  const PointSelection selection(cloud.size(), indices);
+  const std::size_t n = selection.size();
 
   // Offsets: the minimum corner rounded down to the metre; bounds from the
   // quantised coordinates, so they agree exactly with the records.
   Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
   Eigen::Vector3d hi = -lo;
   for (std::size_t k = 0; k < n; ++k) {
-    const Eigen::Vector3d p = cloud.positions[at(k)].cast<double>();
-    if (!p.allFinite()) throw Error(path + ": map point " + std::to_string(at(k)) + " is not finite");
+    const Eigen::Vector3d p = cloud.positions[selection.at(k)].cast<double>();
+    if (!p.allFinite())
+      throw Error(path + ": map point " + std::to_string(selection.at(k)) + " is not finite");
     lo = lo.cwiseMin(p);
     hi = hi.cwiseMax(p);
   }
@@ -129,7 +131,7 @@ void writeLas(const std::string& path, const MapCloud& cloud,
     constexpr std::size_t kChunk = 1 << 16;
     chunk.reserve(kChunk * las::kRecordLength);
     for (std::size_t k = 0; k < n; ++k) {
-      const std::size_t i = at(k);
+      const std::size_t i = selection.at(k);
       const Eigen::Vector3d p = cloud.positions[i].cast<double>();
       put<std::int32_t>(chunk, quantise(p.x(), 0));
       put<std::int32_t>(chunk, quantise(p.y(), 1));
@@ -140,7 +142,8 @@ void writeLas(const std::string& path, const MapCloud& cloud,
       put<std::uint8_t>(chunk, 0);     // class flags, channel, scan direction, edge
       put<std::uint8_t>(chunk, 1);     // classification: unclassified
       const std::int16_t storey = cloud.storey[i];
-      put<std::uint8_t>(chunk, storey >= 0 && storey < 255 ? static_cast<std::uint8_t>(storey) : 255);
+      put<std::uint8_t>(chunk,
+                        storey >= 0 && storey < 255 ? static_cast<std::uint8_t>(storey) : 255);
       put<std::int16_t>(chunk, 0);   // scan angle
       put<std::uint16_t>(chunk, 0);  // point source ID
       put<double>(chunk, cloud.time[i]);

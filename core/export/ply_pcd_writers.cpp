@@ -4,6 +4,7 @@
 #include "common/atomic_file.h"
 #include "export/binary_out.h"
 #include "export/point_cloud_writers.h"
+#include "export/point_selection.h"
 
 namespace storey {
 
@@ -30,8 +31,8 @@ void writeRecords(std::ostream& out, std::size_t n, std::size_t record_size, Wri
 
 void writePly(const std::string& path, const MapCloud& cloud,
               const std::vector<std::uint32_t>* indices) {
-  const std::size_t n = indices ? indices->size() : cloud.size();
-  auto at = [&](std::size_t k) -> std::size_t { return indices ? (*indices)[k] : k; };
+  const PointSelection selection(cloud.size(), indices);
+  const std::size_t n = selection.size();
   writeFileAtomically(path, [&](std::ostream& out) {
     out << "ply\n"
            "format binary_little_endian 1.0\n"
@@ -50,7 +51,7 @@ void writePly(const std::string& path, const MapCloud& cloud,
            "property uchar stairs\n"
            "end_header\n";
     writeRecords(out, n, 33, [&](std::string& b, std::size_t k) {
-      const std::size_t i = at(k);
+      const std::size_t i = selection.at(k);
       put<float>(b, cloud.positions[i].x());
       put<float>(b, cloud.positions[i].y());
       put<float>(b, cloud.positions[i].z());
@@ -65,8 +66,8 @@ void writePly(const std::string& path, const MapCloud& cloud,
 
 void writePcd(const std::string& path, const MapCloud& cloud,
               const std::vector<std::uint32_t>* indices) {
-  const std::size_t n = indices ? indices->size() : cloud.size();
-  auto at = [&](std::size_t k) -> std::size_t { return indices ? (*indices)[k] : k; };
+  const PointSelection selection(cloud.size(), indices);
+  const std::size_t n = selection.size();
   writeFileAtomically(path, [&](std::ostream& out) {
     out << "# .PCD v0.7 - Point Cloud Data file format (Storey map, world frame, metres)\n"
            "VERSION 0.7\n"
@@ -77,7 +78,7 @@ void writePcd(const std::string& path, const MapCloud& cloud,
            "WIDTH "
         << n << "\nHEIGHT 1\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS " << n << "\nDATA binary\n";
     writeRecords(out, n, 32, [&](std::string& b, std::size_t k) {
-      const std::size_t i = at(k);
+      const std::size_t i = selection.at(k);
       put<float>(b, cloud.positions[i].x());
       put<float>(b, cloud.positions[i].y());
       put<float>(b, cloud.positions[i].z());

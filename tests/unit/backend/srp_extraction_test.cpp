@@ -17,13 +17,16 @@ struct Patch {
   double spacing;
 };
 
-void addPatch(std::vector<Eigen::Vector3f>& points, const Patch& p, std::mt19937& rng, double noise) {
+void addPatch(std::vector<Eigen::Vector3f>& points, const Patch& p, std::mt19937& rng,
+              double noise) {
   std::normal_distribution<double> g(0.0, noise);
   const Eigen::Vector3d n = p.u.cross(p.v).normalized();
-  const int nu = static_cast<int>(p.u.norm() / p.spacing), nv = static_cast<int>(p.v.norm() / p.spacing);
+  const int nu = static_cast<int>(p.u.norm() / p.spacing),
+            nv = static_cast<int>(p.v.norm() / p.spacing);
   for (int i = 0; i <= nu; ++i)
     for (int j = 0; j <= nv; ++j) {
-      const Eigen::Vector3d x = p.origin + p.u * (double(i) / nu) + p.v * (double(j) / nv) + n * g(rng);
+      const Eigen::Vector3d x =
+          p.origin + p.u * (double(i) / nu) + p.v * (double(j) / nv) + n * g(rng);
       points.push_back(x.cast<float>());
     }
 }
@@ -34,12 +37,12 @@ void addPatch(std::vector<Eigen::Vector3f>& points, const Patch& p, std::mt19937
 std::vector<Eigen::Vector3f> roomScan(std::mt19937& rng, bool with_clutter) {
   std::vector<Eigen::Vector3f> pts;
   const double noise = 0.01;
-  addPatch(pts, {{-3, -2, -0.6}, {7, 0, 0}, {0, 4.5, 0}, 0.08}, rng, noise);   // floor (largest)
-  addPatch(pts, {{-3, -2, 2.4}, {7, 0, 0}, {0, 4.5, 0}, 0.2}, rng, noise);     // ceiling (sparse)
-  addPatch(pts, {{4, -2, -0.6}, {0, 4.5, 0}, {0, 0, 3.0}, 0.07}, rng, noise);  // wall x = 4
-  addPatch(pts, {{-3, -2, -0.6}, {0, 4.5, 0}, {0, 0, 3.0}, 0.12}, rng, noise); // wall x = -3
-  addPatch(pts, {{-3, -2, -0.6}, {7, 0, 0}, {0, 0, 3.0}, 0.1}, rng, noise);    // wall y = -2
-  addPatch(pts, {{-3, 2.5, -0.6}, {7, 0, 0}, {0, 0, 3.0}, 0.15}, rng, noise);  // wall y = 2.5
+  addPatch(pts, {{-3, -2, -0.6}, {7, 0, 0}, {0, 4.5, 0}, 0.08}, rng, noise);    // floor (largest)
+  addPatch(pts, {{-3, -2, 2.4}, {7, 0, 0}, {0, 4.5, 0}, 0.2}, rng, noise);      // ceiling (sparse)
+  addPatch(pts, {{4, -2, -0.6}, {0, 4.5, 0}, {0, 0, 3.0}, 0.07}, rng, noise);   // wall x = 4
+  addPatch(pts, {{-3, -2, -0.6}, {0, 4.5, 0}, {0, 0, 3.0}, 0.12}, rng, noise);  // wall x = -3
+  addPatch(pts, {{-3, -2, -0.6}, {7, 0, 0}, {0, 0, 3.0}, 0.1}, rng, noise);     // wall y = -2
+  addPatch(pts, {{-3, 2.5, -0.6}, {7, 0, 0}, {0, 0, 3.0}, 0.15}, rng, noise);   // wall y = 2.5
   if (with_clutter) {
     addPatch(pts, {{1.0, 0.5, -0.3}, {0.7, 0, 0}, {0, 0.5, 0}, 0.012}, rng, noise);  // table top
     std::uniform_real_distribution<double> u(-1.5, 1.5);
@@ -48,8 +51,10 @@ std::vector<Eigen::Vector3f> roomScan(std::mt19937& rng, bool with_clutter) {
   return pts;
 }
 
-bool near(const DetectedPlane& p, const Eigen::Vector3d& n, double d, double angle_deg, double dist) {
-  return p.plane.normal().dot(n) > std::cos(angle_deg * M_PI / 180.0) && std::abs(p.plane.distance() - d) < dist;
+bool near(const DetectedPlane& p, const Eigen::Vector3d& n, double d, double angle_deg,
+          double dist) {
+  return p.plane.normal().dot(n) > std::cos(angle_deg * M_PI / 180.0) &&
+         std::abs(p.plane.distance() - d) < dist;
 }
 
 TEST(SrpExtraction, FindsTheLargestOrthogonalPlanesOfARoom) {
@@ -81,8 +86,7 @@ TEST(SrpExtraction, FindsTheLargestOrthogonalPlanesOfARoom) {
     EXPECT_LT(std::sqrt(p.covariance(0, 0)), 0.2 * M_PI / 180.0);
     EXPECT_LT(std::sqrt(p.covariance(2, 2)), 0.01);
   }
-  for (std::size_t i = 1; i < r.srps.size(); ++i)
-    EXPECT_GE(r.srps[i - 1].points, r.srps[i].points);
+  for (std::size_t i = 1; i < r.srps.size(); ++i) EXPECT_GE(r.srps[i - 1].points, r.srps[i].points);
   // The table top (d = 0.3, level) is never an SRP, and the parallel walls and
   // the ceiling were not taken beside the floor and the first walls.
   for (const DetectedPlane& p : r.srps) EXPECT_FALSE(near(p, {0, 0, -1}, 0.3, 5, 0.1));
@@ -138,7 +142,6 @@ TEST(FitPlane, RecoversAKnownPlaneAndItsUncertaintyShrinksWithExtent) {
   EXPECT_GT(small.covariance(0, 0), 4.0 * large.covariance(0, 0));
 }
 
-
 /// A VLP-16-like scan (16 rings, -15 to +15 deg, 0.2 deg azimuth steps) in a
 /// round shaft of radius 1.2 m (no wall is a plane; the floor is out of the
 /// beams' reach): the +-1 deg rings trace z = +-2.1 cm on the wall, 3600
@@ -150,7 +153,8 @@ std::vector<Eigen::Vector3f> roundRoomRings() {
     const double el = (-15.0 + 2.0 * ring) * M_PI / 180.0;
     for (int k = 0; k < 1800; ++k) {
       const double az = k * 0.2 * M_PI / 180.0;
-      const Eigen::Vector3d dir(std::cos(el) * std::cos(az), std::cos(el) * std::sin(az), std::sin(el));
+      const Eigen::Vector3d dir(std::cos(el) * std::cos(az), std::cos(el) * std::sin(az),
+                                std::sin(el));
       pts.push_back((dir * (1.2 / std::cos(el))).cast<float>());
     }
   }

@@ -17,7 +17,7 @@ namespace {
 /// seen `shift` m farther than it is (a different surface when shift != 0).
 nlohmann::json wallObservation(int keyframe, double x, double shift, bool outlier) {
   const double d = 3.0 - x + shift;
-  return {{"keyframe", keyframe}, {"time", static_cast<double>(keyframe)},
+  return {{"keyframe", keyframe},      {"time", static_cast<double>(keyframe)},
           {"normal", {1.0, 0.0, 0.0}}, {"distance", d},
           {"centroid", {d, 0.5, 1.0}}, {"outlier", outlier}};
 }
@@ -26,9 +26,13 @@ TEST(PlaneCheck, FindsTheObservationOnAnotherSurface) {
   test::TempDir dir;
   Trajectory gt;
   for (int k = 0; k < 5; ++k)
-    gt.push_back({static_cast<double>(k), Pose(Eigen::Quaterniond::Identity(), Eigen::Vector3d(0.5 * k, 0, 0))});
-  nlohmann::json planes = {{"format", "storey planes, version 1"}, {"planes", nlohmann::json::array()}};
-  nlohmann::json wall = {{"id", 7}, {"normal", {1.0, 0.0, 0.0}}, {"distance", 3.0},
+    gt.push_back({static_cast<double>(k),
+                  Pose(Eigen::Quaterniond::Identity(), Eigen::Vector3d(0.5 * k, 0, 0))});
+  nlohmann::json planes = {{"format", "storey planes, version 1"},
+                           {"planes", nlohmann::json::array()}};
+  nlohmann::json wall = {{"id", 7},
+                         {"normal", {1.0, 0.0, 0.0}},
+                         {"distance", 3.0},
                          {"observations", nlohmann::json::array()}};
   wall["observations"].push_back(wallObservation(0, 0.0, 0.0, false));
   wall["observations"].push_back(wallObservation(1, 0.5, 0.01, false));
@@ -59,8 +63,11 @@ TEST(PlaneCheck, BadInputIsAClearError) {
   std::ofstream(dir.file("bad.json")) << "{\"planes\": 3}";
   EXPECT_THROW(checkPlanes(dir.file("bad.json"), gt), Error);
   // An observation at a time the truth does not cover.
-  nlohmann::json planes = {{"planes", {{{"id", 0}, {"normal", {0, 0, 1}}, {"distance", 1.0},
-                                        {"observations", {wallObservation(0, 0.0, 0.0, false)}}}}}};
+  nlohmann::json planes = {{"planes",
+                            {{{"id", 0},
+                              {"normal", {0, 0, 1}},
+                              {"distance", 1.0},
+                              {"observations", {wallObservation(0, 0.0, 0.0, false)}}}}}};
   planes["planes"][0]["observations"][0]["time"] = 99.0;
   std::ofstream(dir.file("late.json")) << planes.dump();
   try {
