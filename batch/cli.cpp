@@ -108,6 +108,21 @@ int main(int argc, char** argv) {
   eval_cmd->add_option("--threads", eval.threads, "map distance threads (0: all cores)")
       ->capture_default_str();
 
+  RegistrationBiasOptions bias;
+  auto* bias_cmd = app.add_subcommand(
+      "registration-bias",
+      "the odometry's registration step at the TRUE poses against a map built from them: "
+      "where the LiDAR measurement itself pulls the estimate away (docs/evaluation.md)");
+  bias_cmd->add_option("LOG", bias.log_path, "input log (e.g. a simulation.bag)")->required();
+  bias_cmd->add_option("--gt", bias.gt_path, "the LiDAR's true trajectory (TUM)")->required();
+  bias_cmd->add_option("--csv", bias.csv_path, "per-scan table (CSV)");
+  bias_cmd->add_option("--from", bias.from, "first scan evaluated [s after the log's first scan]");
+  bias_cmd->add_option("--to", bias.to, "last scan evaluated [s after the log's first scan]");
+  bias_cmd->add_option("--max-dt", bias.max_time_difference,
+                       "truth stamp tolerance at the ends of the truth [s]")
+      ->capture_default_str();
+  addCommonOptions(*bias_cmd, bias.common);
+
   RenderOptions render;
   auto* render_cmd =
       app.add_subcommand("render", "write PNG renders of a `storey run` output folder, off-screen");
@@ -147,6 +162,7 @@ int main(int argc, char** argv) {
     }
     if (*eval_cmd) return runEval(eval);
     if (*render_cmd) return runRender(render);
+    if (*bias_cmd) return runRegistrationBias(bias);
   } catch (const storey::Cancelled& e) {
     std::cerr << "storey: " << e.what() << '\n';
     return 1;

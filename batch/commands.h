@@ -3,6 +3,7 @@
 /// cli.cpp (the one file that includes CLI11); each command's body in its own
 /// file, calling core. Every function returns the process exit status and
 /// lets storey::Error escape (cli.cpp prints it and returns 1).
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -58,6 +59,16 @@ struct EvalOptions {
   int threads = 0;                        ///< --threads: map distance threads, 0 = all cores
 };
 
+struct RegistrationBiasOptions {
+  CommonOptions common;
+  std::string log_path;
+  std::string gt_path;   ///< --gt: the LiDAR's true trajectory (TUM)
+  std::string csv_path;  ///< --csv: per-scan table; empty = none
+  double from = 0.0;     ///< --from: seconds after the log's first scan
+  double to = std::numeric_limits<double>::infinity();  ///< --to: same clock
+  double max_time_difference = 0.01;  ///< --max-dt: truth stamp tolerance [s]
+};
+
 struct RenderOptions {
   std::string out_dir;               ///< output folder of storey run
   std::string config_path;           ///< -c/--config: its `render:` section is used
@@ -74,5 +85,6 @@ int runInfo(const InfoOptions& options);
 int runSimulate(const SimulateOptions& options);
 int runEval(const EvalOptions& options);
 int runRender(const RenderOptions& options);
+int runRegistrationBias(const RegistrationBiasOptions& options);
 
 }  // namespace storey::cli

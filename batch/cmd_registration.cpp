@@ -1,0 +1,31 @@
+// `storey registration-bias`: the odometry's LiDAR registration step at the
+// true poses of a simulated (or surveyed) walk, core/eval/registration_bias.h.
+#include <iostream>
+
+#include "commands.h"
+#include "eval/registration_bias.h"
+#include "io/log_reader.h"
+#include "options_config.h"
+#include "trajectory/tum.h"
+
+namespace storey::cli {
+
+int runRegistrationBias(const RegistrationBiasOptions& options) {
+  const Config config = configFromOptions(options.common);
+  const Trajectory truth = readTum(options.gt_path);
+  const std::unique_ptr<LogReader> log = openLog(options.log_path, config);
+  eval::RegistrationBiasOptions bias;
+  bias.from = options.from;
+  bias.to = options.to;
+  bias.max_time_difference = options.max_time_difference;
+  const eval::RegistrationBiasResult result =
+      eval::measureRegistrationBias(*log, truth, config, bias);
+  std::cout << eval::registrationBiasTable(result);
+  if (!options.csv_path.empty()) {
+    eval::writeRegistrationBiasCsv(options.csv_path, result);
+    std::cout << "\nWrote " << options.csv_path << "\n";
+  }
+  return 0;
+}
+
+}  // namespace storey::cli

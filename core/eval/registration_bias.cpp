@@ -1,0 +1,313 @@
+#include "eval/registration_bias.h"
+
+#include <Eigen/Cholesky>
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <optional>
+#include <ostream>
+#include <sstream>
+#include <variant>
+
+#include "common/atomic_file.h"
+#include "common/error.h"
+#include "common/statistics.h"
+#include "common/time.h"
+#include "eval/association.h"
+#include "io/log_reader.h"
+#include "odometry/features.h"
+#include "odometry/scan_matcher.h"
+#include "odometry/voxel_map.h"
+
+namespace storey::eval {
+
+const char* toString(PlaneClass c) {
+  switch (c) {
+    case PlaneClass::kFloorLike:
+      return "floor-like";
+    case PlaneClass::kWall:
+      return "wall";
+    case PlaneClass::kSlanted:
+      return "slanted";
+    case PlaneClass::kCeilingLike:
+      return "ceiling-like";
+    case PlaneClass::kCount:
+      break;
+  }
+  return "unknown";
+}
+
+namespace {
+
+using Vector6 = Eigen::Matrix<double, 6, 1>;
+using Matrix6 = Eigen::Matrix<double, 6, 6>;
+
+/// The truth interpolated at t, or nothing outside it or in one of its gaps.
+class TruthLookup {
+ public:
+  TruthLookup(const Trajectory& truth, const RegistrationBiasOptions& options)
+      : truth_(truth), options_(options) {}
+
+  std::optional<Pose> at(double t) const {
+    if (truth_.empty()) return std::nullopt;
+    const auto later = std::lower_bound(truth_.begin(), truth_.end(), t,
+                                        [](const StampedPose& p, double x) { return p.time < x; });
+    if (later == truth_.begin()) {
+      if (truth_.front().time - t <= options_.max_time_difference) return truth_.front().pose;
+      return std::nullopt;
+    }
+    if (later == truth_.end()) {
+      if (t - truth_.back().time <= options_.max_time_difference) return truth_.back().pose;
+      return std::nullopt;
+    }
+    const StampedPose& a = *(later - 1);
+    const StampedPose& b = *later;
+    if (b.time - a.time > options_.max_interpolation_gap) {
+      if (t - a.time <= options_.max_time_difference) return a.pose;
+      if (b.time - t <= options_.max_time_difference) return b.pose;
+      return std::nullopt;
+    }
+    return interpolatePose(a, b, t);
+  }
+
+ private:
+  const Trajectory& truth_;
+  const RegistrationBiasOptions& options_;
+};
+
+/// The scan with every point moved to the scan's stamp with the true motion
+/// (T_lidar(stamp)^-1 T_lidar(stamp + point time)); nothing when the truth
+/// does not cover the scan.
+std::optional<Scan> deskewWithTruth(const Scan& scan, const TruthLookup& truth,
+                                    Pose& T_world_lidar) {
+  const double stamp = nsToSeconds(scan.stamp_ns);
+  const std::optional<Pose> at_stamp = truth.at(stamp);
+  if (!at_stamp) return std::nullopt;
+  T_world_lidar = *at_stamp;
+  const auto [first, last] = scan.timeSpan();
+  const std::optional<Pose> at_first = truth.at(stamp + first);
+  const std::optional<Pose> at_last = truth.at(stamp + last);
+  if (!at_first || !at_last) return std::nullopt;
+  const Pose T_ref_world = at_stamp->inverse();
+  const StampedPose a{stamp + first, T_ref_world * *at_first};
+  const StampedPose b{stamp + last, T_ref_world * *at_last};
+  // Within one revolution (0.1 s) the motion is interpolated between the
+  // poses at the first and the last firing time.
+  Scan out = scan;
+  for (ScanPoint& p : out.points) {
+    const Pose T_ref_lidar = interpolatePose(a, b, stamp + p.time);
+    p.p = (T_ref_lidar * p.p.cast<double>()).cast<float>();
+  }
+  return out;
+}
+
+PlaneClass classify(const PlaneMatch& m, const Eigen::Vector3d& sensor_world) {
+  const double nz = std::abs(m.n_world.z());
+  if (nz < 0.3) return PlaneClass::kWall;
+  if (nz <= 0.9) return PlaneClass::kSlanted;
+  const double plane_z = m.d_world / m.n_world.z();  // height of the plane above the sensor's xy
+  return plane_z > sensor_world.z() ? PlaneClass::kCeilingLike : PlaneClass::kFloorLike;
+}
+
+/// The Gauss-Newton step of the point-to-plane cost at T_world_lidar, with
+/// the odometry's Huber weights, in the world-frame tangent [dp, dtheta].
+RegistrationStep stepAtPose(const MatchResult& matches, const Pose& T_world_lidar,
+                            double huber_threshold) {
+  RegistrationStep step;
+  Matrix6 H = Matrix6::Zero();
+  std::array<Vector6, 4> g;
+  for (Vector6& x : g) x.setZero();
+  const Eigen::Vector3d sensor_world = T_world_lidar.translation();
+  for (const PlaneMatch& m : matches.planes) {
+    const Eigen::Vector3d x = T_world_lidar * m.y_imu;
+    const double r = m.n_world.dot(x) - m.d_world;
+    const double whitened = std::abs(r) / m.sigma;
+    const double huber = whitened > huber_threshold ? huber_threshold / whitened : 1.0;
+    const double w = huber / (m.sigma * m.sigma);
+    // x = Exp(dtheta) R y + t + dp: d r / d dp = n, d r / d dtheta = (R y) x n.
+    Vector6 J;
+    J << m.n_world, (x - sensor_world).cross(m.n_world);
+    H += w * J * J.transpose();
+    const int c = static_cast<int>(classify(m, sensor_world));
+    g[static_cast<std::size_t>(c)] += w * J * r;
+    ++step.class_matches[static_cast<std::size_t>(c)];
+  }
+  step.matches = static_cast<int>(matches.planes.size());
+  const Eigen::LDLT<Matrix6> solver(H + 1e-9 * Matrix6::Identity());
+  Vector6 total = Vector6::Zero();
+  for (std::size_t c = 0; c < g.size(); ++c) {
+    const Vector6 part = -solver.solve(g[c]);
+    step.class_dz[c] = part(2);
+    total += part;
+  }
+  step.dp = total.head<3>();
+  step.dtheta = total.tail<3>();
+  return step;
+}
+
+void summarise(RegistrationBiasResult& result) {
+  const auto& steps = result.steps;
+  if (steps.empty()) return;
+  std::vector<double> abs_dz, abs_dp;
+  for (const RegistrationStep& s : steps) {
+    result.mean_dp += s.dp;
+    abs_dz.push_back(std::abs(s.dp.z()));
+    abs_dp.push_back(s.dp.norm());
+    for (std::size_t c = 0; c < 4; ++c) result.class_mean_dz[c] += s.class_dz[c];
+  }
+  const double n = static_cast<double>(steps.size());
+  result.mean_dp /= n;
+  for (double& x : result.class_mean_dz) x /= n;
+  result.median_abs_dz = quantile(abs_dz, 0.5);
+  result.p95_abs_dp = quantile(abs_dp, 0.95);
+
+  // One-second windows (disjoint, from the first evaluated scan).
+  std::vector<BiasWindow> windows;
+  for (const RegistrationStep& s : steps) {
+    const double start =
+        steps.front().since_start + std::floor(s.since_start - steps.front().since_start);
+    if (windows.empty() || windows.back().since_start != start)
+      windows.push_back({start, s.position_true.z(), 0.0, 0});
+    windows.back().mean_dz += s.dp.z();
+    ++windows.back().scans;
+  }
+  for (BiasWindow& w : windows) w.mean_dz /= static_cast<double>(w.scans);
+  std::stable_sort(windows.begin(), windows.end(), [](const BiasWindow& a, const BiasWindow& b) {
+    return std::abs(a.mean_dz) > std::abs(b.mean_dz);
+  });
+  windows.resize(std::min<std::size_t>(windows.size(), 5));
+  result.worst_windows = windows;
+}
+
+}  // namespace
+
+RegistrationBiasResult measureRegistrationBias(LogReader& log, const Trajectory& truth,
+                                               const Config& config,
+                                               const RegistrationBiasOptions& options) {
+  if (!(options.to >= options.from))
+    throw Error("registration bias: --to (" + std::to_string(options.to) +
+                " s) is before --from (" + std::to_string(options.from) + " s)");
+  const OdometryConfig& odo = config.odometry;
+  const TruthLookup lookup(truth, options);
+  VoxelMap plane_map(odo.local_map), edge_map(odo.local_map);
+  // The odometry inserts a scan into its map when it leaves the window, so
+  // the newest window_size - 1 scans are not in the map yet.
+  const std::size_t lag = static_cast<std::size_t>(std::max(odo.window_size, 2) - 1);
+  struct Pending {
+    std::vector<Eigen::Vector3f> planes_world;
+    Eigen::Vector3d sensor_world;
+  };
+  std::vector<Pending> pending;
+  Eigen::Vector3d last_trim(std::numeric_limits<double>::infinity(), 0.0, 0.0);
+
+  RegistrationBiasResult result;
+  std::optional<double> first_stamp;
+  LogMessage message;
+  while (log.next(message)) {
+    const Scan* scan = std::get_if<Scan>(&message);
+    if (!scan || scan->points.empty()) continue;
+    ++result.scans_read;
+    const double stamp = nsToSeconds(scan->stamp_ns);
+    if (!first_stamp) first_stamp = stamp;
+    const double since_start = stamp - *first_stamp;
+    if (since_start > options.to) break;
+    Pose T_world_lidar;
+    const std::optional<Scan> deskewed = deskewWithTruth(*scan, lookup, T_world_lidar);
+    if (!deskewed) {
+      ++result.scans_without_truth;
+      continue;
+    }
+    const FeatureSet features = extractFeatures(*deskewed, odo.features);
+    if (since_start >= options.from) {
+      if (plane_map.empty()) {
+        ++result.scans_without_map;
+      } else {
+        std::vector<Eigen::Vector3d> planes_lidar;
+        planes_lidar.reserve(features.planes.size());
+        for (const Eigen::Vector3f& p : features.planes) planes_lidar.push_back(p.cast<double>());
+        const MatchResult matches = matchFeatures(planes_lidar, {}, T_world_lidar, plane_map,
+                                                  edge_map, odo, Eigen::Vector3d::Zero());
+        RegistrationStep step = stepAtPose(matches, T_world_lidar, odo.huber_threshold);
+        step.time = stamp;
+        step.since_start = since_start;
+        step.position_true = T_world_lidar.translation();
+        result.steps.push_back(step);
+      }
+    }
+    Pending entry{{}, T_world_lidar.translation()};
+    entry.planes_world.reserve(features.planes.size());
+    for (const Eigen::Vector3f& p : features.planes)
+      entry.planes_world.push_back((T_world_lidar * p.cast<double>()).cast<float>());
+    pending.push_back(std::move(entry));
+    if (pending.size() > lag) {
+      plane_map.insert(pending.front().planes_world, pending.front().sensor_world);
+      if ((pending.front().sensor_world - last_trim).norm() > 1.0) {
+        plane_map.removeFar(pending.front().sensor_world);
+        last_trim = pending.front().sensor_world;
+      }
+      pending.erase(pending.begin());
+    }
+  }
+  if (result.steps.empty()) {
+    std::ostringstream os;
+    os << "registration bias: no scan of the log between " << options.from << " and " << options.to
+       << " s after its start has a true pose (" << result.scans_read << " scans read, "
+       << result.scans_without_truth
+       << " outside the ground truth or in one of its gaps); do the truth's stamps use the "
+          "log's clock?";
+    throw Error(os.str());
+  }
+  summarise(result);
+  return result;
+}
+
+void writeRegistrationBiasCsv(const std::string& path, const RegistrationBiasResult& result) {
+  writeFileAtomically(path, [&](std::ostream& os) {
+    os << "time,since_start,x_true,y_true,z_true,matches,floor_like,wall,slanted,ceiling_like,"
+          "dx,dy,dz,dtheta_x,dtheta_y,dtheta_z,dz_floor_like,dz_wall,dz_slanted,dz_ceiling_like\n";
+    char line[512];
+    for (const RegistrationStep& s : result.steps) {
+      std::snprintf(
+          line, sizeof(line),
+          "%.6f,%.3f,%.4f,%.4f,%.4f,%d,%d,%d,%d,%d,%.5f,%.5f,%.5f,%.6f,%.6f,%.6f,%.5f,%.5f,"
+          "%.5f,%.5f\n",
+          s.time, s.since_start, s.position_true.x(), s.position_true.y(), s.position_true.z(),
+          s.matches, s.class_matches[0], s.class_matches[1], s.class_matches[2], s.class_matches[3],
+          s.dp.x(), s.dp.y(), s.dp.z(), s.dtheta.x(), s.dtheta.y(), s.dtheta.z(), s.class_dz[0],
+          s.class_dz[1], s.class_dz[2], s.class_dz[3]);
+      os << line;
+    }
+  });
+}
+
+std::string registrationBiasTable(const RegistrationBiasResult& r) {
+  std::ostringstream os;
+  char line[256];
+  os << "Registration step at the true pose (map from the true poses)\n";
+  std::snprintf(line, sizeof(line),
+                "  scans evaluated %zu (read %zu, without truth %zu, before the map %zu)\n",
+                r.steps.size(), r.scans_read, r.scans_without_truth, r.scans_without_map);
+  os << line;
+  std::snprintf(line, sizeof(line), "  mean step dx dy dz        %+.4f %+.4f %+.4f m\n",
+                r.mean_dp.x(), r.mean_dp.y(), r.mean_dp.z());
+  os << line;
+  std::snprintf(line, sizeof(line), "  median |dz|, p95 |dp|     %.4f m, %.4f m\n", r.median_abs_dz,
+                r.p95_abs_dp);
+  os << line;
+  os << "  mean dz by matched plane ";
+  for (std::size_t c = 0; c < 4; ++c) {
+    std::snprintf(line, sizeof(line), " %s %+.4f", toString(static_cast<PlaneClass>(c)),
+                  r.class_mean_dz[c]);
+    os << line;
+  }
+  os << " m\n  one-second windows with the largest mean dz (start s, true z m, mean dz m, "
+        "scans):\n";
+  for (const BiasWindow& w : r.worst_windows) {
+    std::snprintf(line, sizeof(line), "    %9.1f %8.2f %+8.4f %4d\n", w.since_start, w.z_true,
+                  w.mean_dz, w.scans);
+    os << line;
+  }
+  return os.str();
+}
+
+}  // namespace storey::eval

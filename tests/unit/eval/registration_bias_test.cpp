@@ -1,0 +1,120 @@
+// The registration-bias measurement on the simulator's `tiny` building: at
+// the true poses the step is noise; a true pose moved by a known offset is
+// found with that offset; a truth on another clock is an error that says so.
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <string>
+
+#include "common/error.h"
+#include "eval/registration_bias.h"
+#include "io/log_reader.h"
+#include "support/run_storey.h"
+#include "support/tiny_simulation.h"
+#include "trajectory/tum.h"
+
+namespace storey::eval {
+namespace {
+
+class RegistrationBias : public test::TinySimulation {
+ protected:
+  static RegistrationBiasResult measure(const Trajectory& truth) {
+    const Config config = simConfig();
+    const auto log = openLog(bag(), config);
+    return measureRegistrationBias(*log, truth, config);
+  }
+  static Trajectory truth() { return readTum(simFile(sim::kLidarTruthFile)); }
+};
+
+TEST_F(RegistrationBias, AtTheTruePosesTheStepIsOnlyNoise) {
+  const RegistrationBiasResult r = measure(truth());
+  ASSERT_GT(r.steps.size(), 50u);
+  EXPECT_LE(r.scans_without_truth, 1u);  // the last revolution may end after the truth
+  // The map holds a scan once it would have left the odometry's window.
+  EXPECT_LE(r.scans_without_map, static_cast<std::size_t>(simConfig().odometry.window_size));
+  for (int i = 0; i < 3; ++i) EXPECT_LT(std::abs(r.mean_dp(i)), 0.004) << i;
+  EXPECT_LT(r.median_abs_dz, 0.004);
+  // The split by plane class adds up to the whole vertical step.
+  for (const RegistrationStep& s : r.steps) {
+    double sum = 0.0;
+    for (double dz : s.class_dz) sum += dz;
+    ASSERT_NEAR(sum, s.dp.z(), 1e-9);
+    ASSERT_GT(s.matches, 0);
+  }
+}
+
+TEST_F(RegistrationBias, APoseMovedUpIsPulledBackDown) {
+  // Poses k and k + 1 moved up by 5 cm: scan k (its revolution runs from
+  // stamp k to stamp k + 1) is deskewed right but sits 5 cm above the map of
+  // the scans before it. Scan k - 1 ends at the moved pose k and is deskewed
+  // wrong, so the clean reference is scan k - 2.
+  Trajectory moved = truth();
+  ASSERT_GT(moved.size(), 60u);
+  const std::size_t k = moved.size() / 2;
+  for (std::size_t i = k; i <= k + 1; ++i) {
+    const Pose T = moved[i].pose;
+    moved[i].pose = Pose(T.rotation(), T.translation() + Eigen::Vector3d(0.0, 0.0, 0.05));
+  }
+  const RegistrationBiasResult r = measure(moved);
+  const RegistrationStep* at_k = nullptr;
+  const RegistrationStep* clean = nullptr;
+  for (const RegistrationStep& s : r.steps) {
+    if (std::abs(s.time - moved[k].time) < 1e-4) at_k = &s;
+    if (std::abs(s.time - moved[k - 2].time) < 1e-4) clean = &s;
+  }
+  ASSERT_NE(at_k, nullptr);
+  ASSERT_NE(clean, nullptr);
+  EXPECT_NEAR(at_k->dp.z(), -0.05, 0.01);
+  EXPECT_LT(std::abs(clean->dp.z()), 0.01);
+  ASSERT_FALSE(r.worst_windows.empty());
+  for (std::size_t i = 1; i < r.worst_windows.size(); ++i)
+    EXPECT_GE(std::abs(r.worst_windows[i - 1].mean_dz), std::abs(r.worst_windows[i].mean_dz));
+}
+
+TEST_F(RegistrationBias, ATruthOnAnotherClockIsAnError) {
+  Trajectory shifted = truth();
+  for (StampedPose& p : shifted) p.time += 1000.0;
+  try {
+    measure(shifted);
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("clock"), std::string::npos) << e.what();
+  }
+}
+
+TEST_F(RegistrationBias, WritesOneCsvLinePerScan) {
+  const RegistrationBiasResult r = measure(truth());
+  const std::string path = file("bias.csv");
+  writeRegistrationBiasCsv(path, r);
+  std::ifstream in(path);
+  std::string header, line;
+  std::getline(in, header);
+  EXPECT_EQ(header.rfind("time,since_start,x_true", 0), 0u);
+  std::size_t lines = 0;
+  while (std::getline(in, line)) ++lines;
+  EXPECT_EQ(lines, r.steps.size());
+  EXPECT_NE(registrationBiasTable(r).find("scans evaluated"), std::string::npos);
+}
+
+TEST_F(RegistrationBias, RunsAsAProgramAndNamesABadTruthFile) {
+  const std::string calibration = test::shellQuoted(simFile(sim::kCalibrationFile));
+  const test::RunResult ok = test::runStorey(
+      "registration-bias " + test::shellQuoted(bag()) + " --gt " +
+          test::shellQuoted(simFile(sim::kLidarTruthFile)) + " --calibration " + calibration +
+          " --from 2 --to 4 --csv " + test::shellQuoted(file("cli.csv")),
+      file(""));
+  EXPECT_EQ(ok.exit_code, 0) << ok.err;
+  EXPECT_NE(ok.out.find("scans evaluated 2"), std::string::npos) << ok.out;  // 20 or 21 scans
+  EXPECT_TRUE(std::ifstream(file("cli.csv")).good());
+
+  const std::string missing = file("no_such_truth.tum");
+  const test::RunResult bad =
+      test::runStorey("registration-bias " + test::shellQuoted(bag()) + " --gt " +
+                          test::shellQuoted(missing) + " --calibration " + calibration,
+                      file(""));
+  EXPECT_EQ(bad.exit_code, 1);
+  EXPECT_NE(bad.err.find("no_such_truth.tum"), std::string::npos) << bad.err;
+}
+
+}  // namespace
+}  // namespace storey::eval
