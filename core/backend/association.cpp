@@ -81,7 +81,12 @@ AssociationResult associate(const std::vector<DetectedPlane>& srps,
       const PlanePrediction& p = predictions[j];
       const double cos_angle = p.n_kf.dot(n_o);
       const double dd = p.d_kf - d_o;
-      if (cos_angle >= cos_near && std::abs(dd) <= sep * config.distance_gate) near_existing[i] = true;
+      // Only a confirmed landmark keeps a new plane from being made next to it:
+      // one seen once may be a phantom (an edge-on beam cone, a stair tread),
+      // and then it would keep a real surface out of the graph for good.
+      if (cos_angle >= cos_near && std::abs(dd) <= sep * config.distance_gate &&
+          p.observations >= config.confirmed_observations)
+        near_existing[i] = true;
       if (cos_angle < cos_gate) {
         ++result.gate_rejects[static_cast<std::size_t>(cos_angle < 0.0 ? GateReject::kFacing
                                                                          : GateReject::kAngle)];

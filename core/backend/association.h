@@ -22,14 +22,16 @@ namespace storey::backend {
 struct PlanePrediction {
   int landmark = -1;
   Eigen::Vector3d n_kf = Eigen::Vector3d::UnitZ();
-  double d_kf = 0.0;  ///< [m]
+  double d_kf = 0.0;     ///< [m]
+  int observations = 0;  ///< keyframes that have seen it so far
 };
 
 enum class AssociationOutcome {
   kMatched,       ///< observation of an existing landmark
   kNewPlane,      ///< no landmark within the gates: becomes a new one
   kAmbiguous,     ///< two landmarks fit nearly as well: not used
-  kNearExisting,  ///< outside the gates but too close to a landmark to be a new plane: not used
+  kNearExisting,  ///< outside the gates but too close to a confirmed landmark (seen by at least
+                  ///< `confirmed_observations` keyframes) to be a new plane: not used
 };
 const char* toString(AssociationOutcome outcome);
 

@@ -59,6 +59,7 @@ struct SrpBackend::Impl {
   std::vector<Keyframe> kfs;
   std::vector<ObservationRecord> observations;
   std::vector<int> last_seen_kf;  // per landmark
+  std::vector<int> observation_count;  // per landmark
   std::vector<double> observation_chi2;  // after finish()
   Pose A;                         // cumulative correction: current odometry frame <- pure frame
   std::vector<Eigen::Vector3f> last_points;  // the newest scan when it is no keyframe
@@ -117,7 +118,8 @@ struct SrpBackend::Impl {
     const Eigen::Matrix3d R = T_pred.rotationMatrix();
     for (int j = 0; j < graph.landmarks(); ++j) {
       const backend::PlaneLandmark l = graph.landmark(j);
-      predictions.push_back({j, R.transpose() * l.n_world, l.d_world - l.n_world.dot(T_pred.translation())});
+      predictions.push_back({j, R.transpose() * l.n_world, l.d_world - l.n_world.dot(T_pred.translation()),
+                             observation_count[static_cast<std::size_t>(j)]});
     }
     const backend::AssociationResult assoc =
         backend::associate(srps.srps, predictions, config.backend.association);
@@ -137,6 +139,7 @@ struct SrpBackend::Impl {
         const Eigen::Vector3d n_world = T_pred.rotation() * srp.plane.normal();
         plane = graph.addLandmark({n_world, srp.plane.distance() + n_world.dot(T_pred.translation())});
         last_seen_kf.push_back(kf_index);
+        observation_count.push_back(0);
       } else {
         continue;
       }
@@ -149,6 +152,7 @@ struct SrpBackend::Impl {
       observations.push_back(
           {kf_index, plane, o, srp.plane, srp.centroid, srp.hull, srp.points, srp.rms, a.chi2});
       last_seen_kf[static_cast<std::size_t>(plane)] = kf_index;
+      ++observation_count[static_cast<std::size_t>(plane)];
     }
     stats.ms_association.push_back(msSince(t));
     stats.planes = graph.landmarks();
@@ -209,6 +213,7 @@ void validateBackendConfig(const BackendConfig& c) {
   require(a.plane_sigma_distance > 0, "association.plane_sigma_distance", "must be positive");
   require(a.ambiguity_margin >= 0, "association.ambiguity_margin", "must be >= 0");
   require(a.new_plane_separation >= 1, "association.new_plane_separation", "must be >= 1");
+  require(a.confirmed_observations >= 1, "association.confirmed_observations", "must be >= 1");
   const GraphConfig& g = c.graph;
   require(g.odometry_sigma_translation > 0, "graph.odometry_sigma_translation", "must be positive");
   require(g.odometry_sigma_translation_per_m >= 0, "graph.odometry_sigma_translation_per_m", "must be >= 0");

@@ -47,6 +47,7 @@ struct AssociationConfig {
   double plane_sigma_distance = 0.02;    ///< same for a distance [m, > 0]
   double ambiguity_margin = 4.0;    ///< joint hypotheses closer than this in cost are ambiguous [> 0]
   double new_plane_separation = 2.0;  ///< no new plane within this many gates of a known one [>= 1]
+  int confirmed_observations = 2;     ///< ... if that one was seen by at least this many keyframes [>= 1]
 };
 
 /// The keyframe factor graph.

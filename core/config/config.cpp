@@ -142,6 +142,7 @@ void visitBackend(V& v, BackendConfig& c) {
     a.field("plane_sigma_distance", x.plane_sigma_distance);
     a.field("ambiguity_margin", x.ambiguity_margin);
     a.field("new_plane_separation", x.new_plane_separation);
+    a.field("confirmed_observations", x.confirmed_observations);
   });
   v.section("graph", [&](auto& g) {
     GraphConfig& x = c.graph;

@@ -17,8 +17,9 @@ DetectedPlane srp(const Eigen::Vector3d& n, double d, int points = 2000) {
   return p;
 }
 
-PlanePrediction predicted(int id, const Eigen::Vector3d& n, double d) {
-  return {id, n.normalized(), d};
+/// A landmark seen by `observations` keyframes (default: confirmed).
+PlanePrediction predicted(int id, const Eigen::Vector3d& n, double d, int observations = 5) {
+  return {id, n.normalized(), d, observations};
 }
 
 Eigen::Vector3d yawed(const Eigen::Vector3d& n, double deg) {
@@ -27,8 +28,8 @@ Eigen::Vector3d yawed(const Eigen::Vector3d& n, double deg) {
 
 TEST(Association, CorridorWallsFacingEachOtherAreToldApart) {
   // Corridor 2.2 m wide along x; the sensor in the middle, 0.6 m above the floor.
-  const std::vector<PlanePrediction> map{predicted(0, {0, 1, 0}, 1.1), predicted(1, {0, -1, 0}, 1.1),
-                                         predicted(2, {0, 0, -1}, 0.6)};
+  const std::vector<PlanePrediction> map{
+      predicted(0, {0, 1, 0}, 1.1), predicted(1, {0, -1, 0}, 1.1), predicted(2, {0, 0, -1}, 0.6)};
   // Observed with a 1 deg yaw error and 5 cm offset across the corridor.
   const std::vector<DetectedPlane> srps{srp({0, 0, -1}, 0.61), srp(yawed({0, 1, 0}, 1.0), 1.15),
                                         srp(yawed({0, -1, 0}, 1.0), 1.05)};
@@ -45,8 +46,8 @@ TEST(Association, CorridorWallsFacingEachOtherAreToldApart) {
 
 TEST(Association, ParallelWallsCloserThanTheGatesAreAmbiguous) {
   // Two walls facing the same way, 0.25 m apart (a recess); the SRP lies between them.
-  const std::vector<PlanePrediction> map{predicted(0, {1, 0, 0}, 2.0), predicted(1, {1, 0, 0}, 2.25),
-                                         predicted(2, {0, 0, -1}, 0.6)};
+  const std::vector<PlanePrediction> map{
+      predicted(0, {1, 0, 0}, 2.0), predicted(1, {1, 0, 0}, 2.25), predicted(2, {0, 0, -1}, 0.6)};
   const std::vector<DetectedPlane> srps{srp({1, 0, 0}, 2.125), srp({0, 0, -1}, 0.6)};
   const AssociationResult r = associate(srps, map, AssociationConfig{});
   EXPECT_EQ(r.srps[0].outcome, AssociationOutcome::kAmbiguous);
@@ -56,7 +57,8 @@ TEST(Association, ParallelWallsCloserThanTheGatesAreAmbiguous) {
 }
 
 TEST(Association, ParallelWallsFartherApartThanTheGatesMatchTheRightOne) {
-  const std::vector<PlanePrediction> map{predicted(0, {1, 0, 0}, 2.0), predicted(1, {1, 0, 0}, 2.7)};
+  const std::vector<PlanePrediction> map{predicted(0, {1, 0, 0}, 2.0),
+                                         predicted(1, {1, 0, 0}, 2.7)};
   for (double d : {1.95, 2.05, 2.65, 2.75}) {
     const AssociationResult r = associate({srp({1, 0, 0}, d)}, map, AssociationConfig{});
     EXPECT_EQ(r.srps[0].outcome, AssociationOutcome::kMatched) << d;
@@ -67,15 +69,16 @@ TEST(Association, ParallelWallsFartherApartThanTheGatesMatchTheRightOne) {
 TEST(Association, JointMatchingUsesTheRotationOfTheOtherPlanes) {
   // Two walls facing +x at the same distance, their normals 4 deg apart in yaw
   // (within the 6 deg gate). Alone, an SRP half-way between them is ambiguous.
-  const std::vector<PlanePrediction> map{predicted(0, {1, 0, 0}, 3.0),
-                                         predicted(1, yawed({1, 0, 0}, 4.0), 3.0),
-                                         predicted(2, {0, 1, 0}, 1.5), predicted(3, {0, 0, -1}, 0.6)};
+  const std::vector<PlanePrediction> map{
+      predicted(0, {1, 0, 0}, 3.0), predicted(1, yawed({1, 0, 0}, 4.0), 3.0),
+      predicted(2, {0, 1, 0}, 1.5), predicted(3, {0, 0, -1}, 0.6)};
   const DetectedPlane between = srp(yawed({1, 0, 0}, 2.0), 3.0);
   EXPECT_EQ(associate({between}, map, AssociationConfig{}).srps[0].outcome,
             AssociationOutcome::kAmbiguous);
   // With the orthogonal wall observed 2 deg yawed as well, one rotation of the
   // keyframe explains both only if the first wall is landmark 0.
-  const std::vector<DetectedPlane> srps{between, srp(yawed({0, 1, 0}, 2.0), 1.5), srp({0, 0, -1}, 0.6)};
+  const std::vector<DetectedPlane> srps{between, srp(yawed({0, 1, 0}, 2.0), 1.5),
+                                        srp({0, 0, -1}, 0.6)};
   const AssociationResult r = associate(srps, map, AssociationConfig{});
   EXPECT_EQ(r.srps[0].outcome, AssociationOutcome::kMatched);
   EXPECT_EQ(r.srps[0].landmark, 0);
@@ -85,11 +88,30 @@ TEST(Association, JointMatchingUsesTheRotationOfTheOtherPlanes) {
 
 TEST(Association, UnknownPlanesAreNewButNotNextToAKnownOne) {
   const std::vector<PlanePrediction> map{predicted(0, {1, 0, 0}, 2.0)};
-  const AssociationResult r =
-      associate({srp({0, 1, 0}, 2.0), srp({1, 0, 0}, 2.35), srp({1, 0, 0}, 4.0)}, map, AssociationConfig{});
+  const AssociationResult r = associate(
+      {srp({0, 1, 0}, 2.0), srp({1, 0, 0}, 2.35), srp({1, 0, 0}, 4.0)}, map, AssociationConfig{});
   EXPECT_EQ(r.srps[0].outcome, AssociationOutcome::kNewPlane);
   EXPECT_EQ(r.srps[1].outcome, AssociationOutcome::kNearExisting);
   EXPECT_EQ(r.srps[2].outcome, AssociationOutcome::kNewPlane);
+}
+
+TEST(Association, APlaneSeenOnceDoesNotKeepARealOneOut) {
+  // building-b: a phantom level plane 0.3 m above a storey's floor, seen by one
+  // keyframe, kept that floor out of the graph for the whole storey. Seen once
+  // it blocks nothing; seen by two keyframes it is confirmed and does.
+  const DetectedPlane floor = srp({0, 0, -1}, 0.62);
+  for (int seen : {1, 2}) {
+    const std::vector<PlanePrediction> map{predicted(0, {0, 0, -1}, 0.31, seen)};
+    const AssociationResult r = associate({floor}, map, AssociationConfig{});
+    EXPECT_EQ(r.srps[0].outcome,
+              seen == 1 ? AssociationOutcome::kNewPlane : AssociationOutcome::kNearExisting)
+        << seen;
+  }
+  // The rule is the configuration's.
+  AssociationConfig strict;
+  strict.confirmed_observations = 1;
+  EXPECT_EQ(associate({floor}, {predicted(0, {0, 0, -1}, 0.31, 1)}, strict).srps[0].outcome,
+            AssociationOutcome::kNearExisting);
 }
 
 }  // namespace
