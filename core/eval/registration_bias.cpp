@@ -105,7 +105,10 @@ PlaneClass classify(const PlaneMatch& m, const Eigen::Vector3d& sensor_world) {
   const double nz = std::abs(m.n_world.z());
   if (nz < 0.3) return PlaneClass::kWall;
   if (nz <= 0.9) return PlaneClass::kSlanted;
-  const double plane_z = m.d_world / m.n_world.z();  // height of the plane above the sensor's xy
+  // Height of the plane straight above or below the sensor.
+  const double plane_z =
+      (m.d_world - m.n_world.x() * sensor_world.x() - m.n_world.y() * sensor_world.y()) /
+      m.n_world.z();
   return plane_z > sensor_world.z() ? PlaneClass::kCeilingLike : PlaneClass::kFloorLike;
 }
 
