@@ -17,7 +17,7 @@ int runRegistrationBias(const RegistrationBiasOptions& options) {
   eval::RegistrationBiasOptions bias;
   bias.from = options.from;
   bias.to = options.to;
-  bias.max_time_difference = options.max_time_difference;
+  bias.truth.max_time_difference = options.max_time_difference;
   const eval::RegistrationBiasResult result =
       eval::measureRegistrationBias(*log, truth, config, bias);
   std::cout << eval::registrationBiasTable(result);

@@ -35,41 +35,47 @@ std::string spanText(const Trajectory& trajectory) {
 
 }  // namespace
 
+TruthCoverage truthAt(const Trajectory& gt, double t, const AssociationOptions& options,
+                      Pose& T_world_gt) {
+  const double tol = options.max_time_difference;
+  if (gt.empty() || t < gt.front().time - tol || t > gt.back().time + tol)
+    return TruthCoverage::kOutsideSpan;
+  // First truth pose at or after t (the truth is strictly increasing in time).
+  const auto after = std::lower_bound(gt.begin(), gt.end(), t,
+                                      [](const StampedPose& s, double x) { return s.time < x; });
+  if (after == gt.begin()) {
+    T_world_gt = gt.front().pose;  // at or just before the first truth pose
+  } else if (after == gt.end()) {
+    T_world_gt = gt.back().pose;  // just after the last truth pose
+  } else {
+    const StampedPose& a = *(after - 1);
+    const StampedPose& b = *after;
+    if (b.time - a.time <= options.max_interpolation_gap) {
+      T_world_gt = interpolatePose(a, b, t);
+    } else if (t - a.time <= tol) {
+      T_world_gt = a.pose;
+    } else if (b.time - t <= tol) {
+      T_world_gt = b.pose;
+    } else {
+      return TruthCoverage::kInGap;
+    }
+  }
+  return TruthCoverage::kCovered;
+}
+
 AssociatedPoses associate(const Trajectory& gt, const Trajectory& est,
                           const AssociationOptions& options) {
   options.validate();
   AssociatedPoses result;
   result.est_poses = est.size();
-  const double tol = options.max_time_difference;
-  auto by_time = [](const StampedPose& s, double t) { return s.time < t; };
   for (const StampedPose& e : est) {
-    const double t = e.time;
-    if (gt.empty() || t < gt.front().time - tol || t > gt.back().time + tol) {
-      ++result.outside_gt_span;
-      continue;
-    }
-    // First truth pose at or after t (both trajectories are strictly increasing in time).
-    const auto after = std::lower_bound(gt.begin(), gt.end(), t, by_time);
     Pose T_world_gt;
-    if (after == gt.begin()) {
-      T_world_gt = gt.front().pose;  // at or just before the first truth pose
-    } else if (after == gt.end()) {
-      T_world_gt = gt.back().pose;  // just after the last truth pose
-    } else {
-      const StampedPose& a = *(after - 1);
-      const StampedPose& b = *after;
-      if (b.time - a.time <= options.max_interpolation_gap) {
-        T_world_gt = interpolatePose(a, b, t);
-      } else if (t - a.time <= tol) {
-        T_world_gt = a.pose;
-      } else if (b.time - t <= tol) {
-        T_world_gt = b.pose;
-      } else {
-        ++result.in_gt_gap;
-        continue;
-      }
+    switch (truthAt(gt, e.time, options, T_world_gt)) {
+      case TruthCoverage::kOutsideSpan: ++result.outside_gt_span; continue;
+      case TruthCoverage::kInGap: ++result.in_gt_gap; continue;
+      case TruthCoverage::kCovered: break;
     }
-    result.times.push_back(t);
+    result.times.push_back(e.time);
     result.T_world_gt.push_back(T_world_gt);
     result.T_world_est.push_back(e.pose);
   }

@@ -36,6 +36,16 @@ struct AssociatedPoses {
 /// clamped to [a.time, b.time].
 Pose interpolatePose(const StampedPose& a, const StampedPose& b, double t);
 
+/// Where a time falls with respect to the truth.
+enum class TruthCoverage { kCovered, kOutsideSpan, kInGap };
+
+/// The truth at time t as associate() takes it: interpolated between the two
+/// truth poses around t, or the nearest one within `max_time_difference`
+/// where that is not possible (the ends, a gap longer than
+/// `max_interpolation_gap`). Writes T_world_gt only when kCovered.
+TruthCoverage truthAt(const Trajectory& gt, double t, const AssociationOptions& options,
+                      Pose& T_world_gt);
+
 /// Associates `est` with `gt`. Throws storey::Error when fewer than 2 poses match,
 /// with the two time spans in the message (a time offset between the files, for
 /// example relative versus absolute stamps, is the usual cause).

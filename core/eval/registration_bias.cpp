@@ -42,51 +42,25 @@ namespace {
 using Vector6 = Eigen::Matrix<double, 6, 1>;
 using Matrix6 = Eigen::Matrix<double, 6, 6>;
 
-/// The truth interpolated at t, or nothing outside it or in one of its gaps.
-class TruthLookup {
- public:
-  TruthLookup(const Trajectory& truth, const RegistrationBiasOptions& options)
-      : truth_(truth), options_(options) {}
-
-  std::optional<Pose> at(double t) const {
-    if (truth_.empty()) return std::nullopt;
-    const auto later = std::lower_bound(truth_.begin(), truth_.end(), t,
-                                        [](const StampedPose& p, double x) { return p.time < x; });
-    if (later == truth_.begin()) {
-      if (truth_.front().time - t <= options_.max_time_difference) return truth_.front().pose;
-      return std::nullopt;
-    }
-    if (later == truth_.end()) {
-      if (t - truth_.back().time <= options_.max_time_difference) return truth_.back().pose;
-      return std::nullopt;
-    }
-    const StampedPose& a = *(later - 1);
-    const StampedPose& b = *later;
-    if (b.time - a.time > options_.max_interpolation_gap) {
-      if (t - a.time <= options_.max_time_difference) return a.pose;
-      if (b.time - t <= options_.max_time_difference) return b.pose;
-      return std::nullopt;
-    }
-    return interpolatePose(a, b, t);
-  }
-
- private:
-  const Trajectory& truth_;
-  const RegistrationBiasOptions& options_;
-};
+/// The truth at t, or nothing outside it or in one of its gaps.
+std::optional<Pose> truePose(const Trajectory& truth, double t, const AssociationOptions& options) {
+  Pose T_world_lidar;
+  if (truthAt(truth, t, options, T_world_lidar) != TruthCoverage::kCovered) return std::nullopt;
+  return T_world_lidar;
+}
 
 /// The scan with every point moved to the scan's stamp with the true motion
 /// (T_lidar(stamp)^-1 T_lidar(stamp + point time)); nothing when the truth
 /// does not cover the scan.
-std::optional<Scan> deskewWithTruth(const Scan& scan, const TruthLookup& truth,
-                                    Pose& T_world_lidar) {
+std::optional<Scan> deskewWithTruth(const Scan& scan, const Trajectory& truth,
+                                    const AssociationOptions& options, Pose& T_world_lidar) {
   const double stamp = nsToSeconds(scan.stamp_ns);
-  const std::optional<Pose> at_stamp = truth.at(stamp);
+  const std::optional<Pose> at_stamp = truePose(truth, stamp, options);
   if (!at_stamp) return std::nullopt;
   T_world_lidar = *at_stamp;
   const auto [first, last] = scan.timeSpan();
-  const std::optional<Pose> at_first = truth.at(stamp + first);
-  const std::optional<Pose> at_last = truth.at(stamp + last);
+  const std::optional<Pose> at_first = truePose(truth, stamp + first, options);
+  const std::optional<Pose> at_last = truePose(truth, stamp + last, options);
   if (!at_first || !at_last) return std::nullopt;
   const Pose T_ref_world = at_stamp->inverse();
   const StampedPose a{stamp + first, T_ref_world * *at_first};
@@ -118,7 +92,7 @@ RegistrationStep stepAtPose(const MatchResult& matches, const Pose& T_world_lida
                             double huber_threshold) {
   RegistrationStep step;
   Matrix6 H = Matrix6::Zero();
-  std::array<Vector6, 4> g;
+  std::array<Vector6, kPlaneClasses> g;
   for (Vector6& x : g) x.setZero();
   const Eigen::Vector3d sensor_world = T_world_lidar.translation();
   for (const PlaneMatch& m : matches.planes) {
@@ -156,7 +130,7 @@ void summarise(RegistrationBiasResult& result) {
     result.mean_dp += s.dp;
     abs_dz.push_back(std::abs(s.dp.z()));
     abs_dp.push_back(s.dp.norm());
-    for (std::size_t c = 0; c < 4; ++c) result.class_mean_dz[c] += s.class_dz[c];
+    for (std::size_t c = 0; c < kPlaneClasses; ++c) result.class_mean_dz[c] += s.class_dz[c];
   }
   const double n = static_cast<double>(steps.size());
   result.mean_dp /= n;
@@ -191,7 +165,7 @@ RegistrationBiasResult measureRegistrationBias(LogReader& log, const Trajectory&
     throw Error("registration bias: --to (" + std::to_string(options.to) +
                 " s) is before --from (" + std::to_string(options.from) + " s)");
   const OdometryConfig& odo = config.odometry;
-  const TruthLookup lookup(truth, options);
+  options.truth.validate();
   VoxelMap plane_map(odo.local_map), edge_map(odo.local_map);
   // The odometry inserts a scan into its map when it leaves the window, so
   // the newest window_size - 1 scans are not in the map yet.
@@ -215,7 +189,8 @@ RegistrationBiasResult measureRegistrationBias(LogReader& log, const Trajectory&
     const double since_start = stamp - *first_stamp;
     if (since_start > options.to) break;
     Pose T_world_lidar;
-    const std::optional<Scan> deskewed = deskewWithTruth(*scan, lookup, T_world_lidar);
+    const std::optional<Scan> deskewed =
+        deskewWithTruth(*scan, truth, options.truth, T_world_lidar);
     if (!deskewed) {
       ++result.scans_without_truth;
       continue;
@@ -298,7 +273,7 @@ std::string registrationBiasTable(const RegistrationBiasResult& r) {
                 r.p95_abs_dp);
   os << line;
   os << "  mean dz by matched plane ";
-  for (std::size_t c = 0; c < 4; ++c) {
+  for (std::size_t c = 0; c < kPlaneClasses; ++c) {
     std::snprintf(line, sizeof(line), " %s %+.4f", toString(static_cast<PlaneClass>(c)),
                   r.class_mean_dz[c]);
     os << line;

@@ -21,6 +21,7 @@
 #include <Eigen/Core>
 
 #include "config/config.h"
+#include "eval/association.h"
 #include "trajectory/tum.h"
 
 namespace storey {
@@ -32,12 +33,12 @@ namespace storey::eval {
 /// Orientation classes of a matched map plane (world frame, z up).
 enum class PlaneClass { kFloorLike = 0, kWall, kSlanted, kCeilingLike, kCount };
 const char* toString(PlaneClass c);
+constexpr std::size_t kPlaneClasses = static_cast<std::size_t>(PlaneClass::kCount);
 
 struct RegistrationBiasOptions {
   double from = 0.0;  ///< first scan evaluated, seconds after the first scan of the log
   double to = std::numeric_limits<double>::infinity();  ///< last one, same clock [s]
-  double max_time_difference = 0.01;   ///< truth stamp tolerance at the ends of the truth [s]
-  double max_interpolation_gap = 0.5;  ///< longest truth gap interpolated across [s]
+  AssociationOptions truth;  ///< how the truth is looked up at a time (as `storey eval` does)
 };
 
 /// One scan: the step from its true pose.
@@ -46,10 +47,10 @@ struct RegistrationStep {
   double since_start = 0.0;  ///< seconds after the first scan of the log
   Eigen::Vector3d position_true = Eigen::Vector3d::Zero();  ///< LiDAR, world [m]
   int matches = 0;                                          ///< point-to-plane matches
-  std::array<int, 4> class_matches{};                       ///< per PlaneClass
+  std::array<int, kPlaneClasses> class_matches{};           ///< per PlaneClass
   Eigen::Vector3d dp = Eigen::Vector3d::Zero();             ///< translation step, world [m]
   Eigen::Vector3d dtheta = Eigen::Vector3d::Zero();         ///< rotation step, world [rad]
-  std::array<double, 4> class_dz{};  ///< z of the step each class alone would cause [m]
+  std::array<double, kPlaneClasses> class_dz{};  ///< z of the step each class alone would cause [m]
 };
 
 /// A one-second stretch with a large mean vertical step.
@@ -68,7 +69,7 @@ struct RegistrationBiasResult {
   Eigen::Vector3d mean_dp = Eigen::Vector3d::Zero();  ///< over `steps` [m]
   double median_abs_dz = 0.0;                         ///< [m]
   double p95_abs_dp = 0.0;                            ///< 95th percentile of |dp| [m]
-  std::array<double, 4> class_mean_dz{};              ///< mean of class_dz per class [m]
+  std::array<double, kPlaneClasses> class_mean_dz{};  ///< mean of class_dz per class [m]
   std::vector<BiasWindow> worst_windows;  ///< up to 5 one-second windows, largest |mean_dz| first
 };
 
