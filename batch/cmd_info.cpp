@@ -85,12 +85,12 @@ void printCloudTopic(const TopicSummary& t, std::ostream& out) {
 
 int runInfo(const InfoOptions& options) {
   const Config config = configFromOptions(options.common);
-  const LogSummary summary = summarizeLog(options.log_path, config);
+  const LogSummary summary = summarizeLog(options.log_path, config.input, config.sensor);
   std::ostream& out = std::cout;
   const bool bag = summary.compression.size() > 0;
 
-  out << "Log " << summary.path << '\n' << "  format       " << summary.format << ", "
-      << bytesText(summary.size_bytes);
+  out << "Log " << summary.path << '\n'
+      << "  format       " << summary.format << ", " << bytesText(summary.size_bytes);
   if (bag) out << ", " << summary.chunks << " chunks (compression: " << summary.compression << ")";
   out << "\n  messages     " << summary.messages << '\n';
   if (summary.messages > 0) {
@@ -99,7 +99,8 @@ int runInfo(const InfoOptions& options) {
         << fixed(static_cast<double>(summary.end_ns - summary.start_ns) * 1e-9, 3) << " s)\n";
   }
   for (const auto& [name, value] : summary.properties) {
-    out << "  " << name << std::string(name.size() < 13 ? 13 - name.size() : 1, ' ') << value << '\n';
+    out << "  " << name << std::string(name.size() < 13 ? 13 - name.size() : 1, ' ') << value
+        << '\n';
   }
   out << (bag ? "\nTopics\n" : "\nStreams\n");
   printTopics(summary, out);

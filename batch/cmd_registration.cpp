@@ -13,13 +13,13 @@ namespace storey::cli {
 int runRegistrationBias(const RegistrationBiasOptions& options) {
   const Config config = configFromOptions(options.common);
   const Trajectory truth = readTum(options.gt_path);
-  const std::unique_ptr<LogReader> log = openLog(options.log_path, config);
+  const std::unique_ptr<LogReader> log = openLog(options.log_path, config.input, config.sensor);
   eval::RegistrationBiasOptions bias;
   bias.from = options.from;
   bias.to = options.to;
   bias.truth.max_time_difference = options.max_time_difference;
   const eval::RegistrationBiasResult result =
-      eval::measureRegistrationBias(*log, truth, config, bias);
+      eval::measureRegistrationBias(*log, truth, config.odometry, bias);
   std::cout << eval::registrationBiasTable(result);
   if (!options.csv_path.empty()) {
     eval::writeRegistrationBiasCsv(options.csv_path, result);

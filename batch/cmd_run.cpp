@@ -6,7 +6,7 @@
 
 #include "commands.h"
 #include "common/error.h"
-#include "config/calibration.h"
+#include "config/config.h"
 #include "options_config.h"
 #include "pipeline/pipeline.h"
 #include "progress_bar.h"
@@ -30,13 +30,14 @@ int runRun(const RunOptions& options) {
     const sim::SimulationResult sim =
         sim::simulate(sim::loadBuildingSpec(options.preset), {}, sim_dir, sim_bar.callback());
     sim_bar.done();
-    std::cerr << "storey run: simulated " << sim.path_length << " m in " << sim.duration
-              << " s, " << sim.scans << " scans\n";
+    std::cerr << "storey run: simulated " << sim.path_length << " m in " << sim.duration << " s, "
+              << sim.scans << " scans\n";
     log_path = (std::filesystem::path(sim_dir) / sim::kBagFile).string();
     ground_truth = (std::filesystem::path(sim_dir) / sim::kLidarTruthFile).string();
     // The simulated sensors' calibration, unless the user gave one.
     if (options.common.calibration_path.empty())
-      applyCalibrationFile(config, (std::filesystem::path(sim_dir) / sim::kCalibrationFile).string());
+      applyCalibrationFile(config,
+                           (std::filesystem::path(sim_dir) / sim::kCalibrationFile).string());
   }
   ProgressBar bar("run");
   const PipelineResult result = runPipeline(log_path, config, options.out_dir, bar.callback());

@@ -1,6 +1,6 @@
 #include "options_config.h"
 
-#include "config/calibration.h"
+#include "config/config.h"
 
 namespace storey::cli {
 

@@ -72,9 +72,7 @@ void parseViewList(const std::string& list, RenderViews& views) {
 
 RenderSummary renderRun(const RenderRequest& request, const RenderConfig& config) {
   const auto start = std::chrono::steady_clock::now();
-  Config check;
-  check.render = config;
-  check.validate();
+  config.validate();
   RenderSummary summary;
   const RunData run = loadRun(request.out_dir, static_cast<std::size_t>(config.max_display_points));
   summary.notes = run.notes;

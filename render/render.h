@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "config/config.h"
+#include "config/render_config.h"
 #include "export/report_markdown.h"
 
 namespace storey::render {

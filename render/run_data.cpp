@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "common/error.h"
+#include "export/planes_json.h"
 #include "render/run_data.h"
 
 namespace storey::render {
@@ -23,12 +24,6 @@ Json readJson(const std::string& path) {
   return j;
 }
 
-Eigen::Vector3d vec3(const Json& j, const std::string& where) {
-  if (!j.is_array() || j.size() != 3 || !j[0].is_number() || !j[1].is_number() || !j[2].is_number())
-    throw Error(where + ": expected [x, y, z]");
-  return {j[0].get<double>(), j[1].get<double>(), j[2].get<double>()};
-}
-
 double number(const Json& j, const char* key, const std::string& where) {
   if (!j.contains(key) || !j[key].is_number())
     throw Error(where + ": '" + key + "' missing or not a number");
@@ -37,47 +32,8 @@ double number(const Json& j, const char* key, const std::string& where) {
 
 }  // namespace
 
-std::vector<SrpPlane> readPlanesJson(const std::string& path) {
-  const Json doc = readJson(path);
-  if (!doc.contains("planes") || !doc["planes"].is_array())
-    throw Error(path + ": no 'planes' array");
-  std::vector<SrpPlane> planes;
-  for (std::size_t i = 0; i < doc["planes"].size(); ++i) {
-    const Json& p = doc["planes"][i];
-    const std::string where = path + ": planes[" + std::to_string(i) + "]";
-    SrpPlane plane;
-    plane.id =
-        p.contains("id") && p["id"].is_number_integer() ? p["id"].get<int>() : static_cast<int>(i);
-    plane.normal = vec3(p.value("normal", Json()), where + ".normal");
-    plane.distance = number(p, "distance", where);
-    plane.facing = p.contains("facing") ? vec3(p["facing"], where + ".facing")
-                                        : Eigen::Vector3d(-plane.normal);
-    if (p.contains("observations") && p["observations"].is_array()) {
-      for (std::size_t k = 0; k < p["observations"].size(); ++k) {
-        const Json& o = p["observations"][k];
-        const std::string ow = where + ".observations[" + std::to_string(k) + "]";
-        SrpObservation obs;
-        obs.keyframe = static_cast<int>(number(o, "keyframe", ow));
-        obs.normal_lidar = vec3(o.value("normal", Json()), ow + ".normal");
-        obs.distance_lidar = number(o, "distance", ow);
-        obs.points = o.contains("points") && o["points"].is_number() ? o["points"].get<int>() : 0;
-        obs.fit_rms = o.contains("fit_rms_m") && o["fit_rms_m"].is_number()
-                          ? o["fit_rms_m"].get<double>()
-                          : 0.0;
-        obs.outlier =
-            o.contains("outlier") && o["outlier"].is_boolean() && o["outlier"].get<bool>();
-        if (o.contains("centroid") && !o["centroid"].is_null())
-          obs.centroid_lidar = vec3(o["centroid"], ow + ".centroid");
-        if (o.contains("hull") && o["hull"].is_array()) {
-          for (std::size_t h = 0; h < o["hull"].size(); ++h)
-            obs.hull_lidar.push_back(vec3(o["hull"][h], ow + ".hull[" + std::to_string(h) + "]"));
-        }
-        plane.observations.push_back(std::move(obs));
-      }
-    }
-    planes.push_back(std::move(plane));
-  }
-  return planes;
+Eigen::Vector3d facingOf(const GlobalPlane& plane) {
+  return plane.facing_world ? *plane.facing_world : Eigen::Vector3d(-plane.normal_world);
 }
 
 std::vector<StoreyEntry> readStoreysJson(const std::string& path) {
@@ -133,7 +89,7 @@ RunData loadRun(const std::string& dir, std::size_t max_points) {
   else
     run.notes.push_back("no keyframes.tum (run without the SRP back end): no SRP views");
   if (fs::exists(d / "planes.json"))
-    run.planes = readPlanesJson((d / "planes.json").string());
+    run.planes = readPlanesJson((d / "planes.json").string()).planes;
   else
     run.notes.push_back("no planes.json: no SRP patches");
   if (fs::exists(d / "storeys.json"))

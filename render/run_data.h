@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "trajectory/tum.h"
+#include "types/plane_map.h"
 
 namespace storey::render {
 
@@ -30,27 +31,8 @@ struct MapSample {
 /// subsample of about max_points (each vertex by a hash of its index).
 MapSample readMapSample(const std::string& path, std::size_t max_points);
 
-struct SrpObservation {
-  int keyframe = -1;                      ///< index into keyframes.tum
-  Eigen::Vector3d normal_lidar{0, 0, 1};  ///< plane in the keyframe's LiDAR frame
-  double distance_lidar = 0.0;
-  int points = 0;
-  double fit_rms = 0.0;  ///< [m]
-  bool outlier = false;
-  std::vector<Eigen::Vector3d>
-      hull_lidar;  ///< convex hull of the inliers (LiDAR frame); may be empty
-  std::optional<Eigen::Vector3d> centroid_lidar;
-};
-
-struct SrpPlane {
-  int id = 0;
-  Eigen::Vector3d normal{0, 0, 1};  ///< world, Hesse n . x = d
-  double distance = 0.0;
-  Eigen::Vector3d facing{0, 0, 1};  ///< from the plane towards the side it was seen from
-  std::vector<SrpObservation> observations;
-};
-
-std::vector<SrpPlane> readPlanesJson(const std::string& path);
+/// The side a plane was seen from (world): its `facing`, or -normal in files without it.
+Eigen::Vector3d facingOf(const GlobalPlane& plane);
 
 struct StoreyEntry {
   int index = 0;
@@ -67,9 +49,9 @@ std::vector<StoreyEntry> readStoreysJson(const std::string& path);
 struct RunData {
   std::string dir;
   MapSample map;
-  Trajectory trajectory;  ///< trajectory.tum (required)
-  Trajectory keyframes;   ///< keyframes.tum (empty without the back end)
-  std::vector<SrpPlane> planes;
+  Trajectory trajectory;            ///< trajectory.tum (required)
+  Trajectory keyframes;             ///< keyframes.tum (empty without the back end)
+  std::vector<GlobalPlane> planes;  ///< planes.json (export/planes_json.h)
   std::vector<StoreyEntry> storeys;
   std::vector<std::string> notes;  ///< files missing and what is left out
 };

@@ -90,16 +90,16 @@ PatchSet worldPatches(const RunData& run, double point_distance, double fallback
                 static_cast<int>(std::floor(q.z() / fallback_radius))};
   };
   bool need_buckets = false;
-  for (const SrpPlane& plane : run.planes)
-    for (const SrpObservation& o : plane.observations) need_buckets |= o.hull_lidar.size() < 3;
+  for (const GlobalPlane& plane : run.planes)
+    for (const PlaneObservation& o : plane.observations) need_buckets |= o.hull_keyframe.size() < 3;
   if (need_buckets) {
     for (std::size_t i = 0; i < run.map.size(); ++i)
       buckets[key(run.map.positions[i].cast<double>())].push_back(static_cast<std::uint32_t>(i));
   }
   for (std::size_t pi = 0; pi < run.planes.size(); ++pi) {
-    const SrpPlane& plane = run.planes[pi];
+    const GlobalPlane& plane = run.planes[pi];
     for (std::size_t oi = 0; oi < plane.observations.size(); ++oi) {
-      const SrpObservation& o = plane.observations[oi];
+      const PlaneObservation& o = plane.observations[oi];
       if (o.keyframe < 0 || o.keyframe >= static_cast<int>(run.keyframes.size())) {
         ++out.skipped;
         continue;
@@ -110,8 +110,8 @@ PatchSet worldPatches(const RunData& run, double point_distance, double fallback
       p.plane_index = static_cast<int>(pi);
       p.keyframe = o.keyframe;
       p.observation = static_cast<int>(oi);
-      p.normal = (T_world_lidar.rotationMatrix() * o.normal_lidar).normalized();
-      p.distance = o.distance_lidar + p.normal.dot(T_world_lidar.translation());
+      p.normal = (T_world_lidar.rotationMatrix() * o.normal_keyframe).normalized();
+      p.distance = o.distance_keyframe + p.normal.dot(T_world_lidar.translation());
       // Seen side: towards the sensor of this observation.
       const double side = p.normal.dot(T_world_lidar.translation()) - p.distance;
       p.facing = side >= 0.0 ? p.normal : Eigen::Vector3d(-p.normal);
@@ -119,8 +119,8 @@ PatchSet worldPatches(const RunData& run, double point_distance, double fallback
       planeBasis(p.normal, u, v);
       const Eigen::Vector3d origin = p.normal * p.distance;
       std::vector<Eigen::Vector2d> flat;
-      if (o.hull_lidar.size() >= 3) {
-        for (const auto& h : o.hull_lidar) {
+      if (o.hull_keyframe.size() >= 3) {
+        for (const auto& h : o.hull_keyframe) {
           const Eigen::Vector3d w = T_world_lidar * h;
           flat.emplace_back((w - origin).dot(u), (w - origin).dot(v));
         }

@@ -8,11 +8,11 @@
 
 namespace storey::render {
 
-double buildingYaw(const std::vector<SrpPlane>& planes) {
+double buildingYaw(const std::vector<GlobalPlane>& planes) {
   double c = 0.0, s = 0.0;
-  for (const SrpPlane& p : planes) {
-    if (std::abs(p.normal.z()) > 0.3) continue;  // not a wall
-    const double angle = std::atan2(p.normal.y(), p.normal.x());
+  for (const GlobalPlane& p : planes) {
+    if (std::abs(p.normal_world.z()) > 0.3) continue;  // not a wall
+    const double angle = std::atan2(p.normal_world.y(), p.normal_world.x());
     const double w = static_cast<double>(std::max<std::size_t>(1, p.observations.size()));
     c += w * std::cos(4.0 * angle);
     s += w * std::sin(4.0 * angle);

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "config/config.h"
+#include "config/render_config.h"
 #include "render/figure.h"
 #include "render/run_data.h"
 #include "render/srp_patches.h"
@@ -28,7 +28,7 @@ ViewContext makeViewContext(const RunData& run, const RenderConfig& config);
 
 /// Main horizontal direction of the walls (vertical SRPs, weighted by their
 /// observations), modulo 90 degrees; 0 without walls.
-double buildingYaw(const std::vector<SrpPlane>& planes);
+double buildingYaw(const std::vector<GlobalPlane>& planes);
 
 /// "floor", "ceiling", "wall" or "slanted", from the plane's normal and seen side.
 std::string planeKind(const Eigen::Vector3d& normal, const Eigen::Vector3d& facing);

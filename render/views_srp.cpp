@@ -114,10 +114,10 @@ Figure srpMapFigure(const ViewContext& c) {
     f.subtitle += " | patches estimated from the map (planes.json has no hulls)";
 
   f.legend.push_back({LegendItem::Kind::kHeading, {}, "SRP id: kind, observations, storeys"});
-  for (const SrpPlane& p : run.planes) {
+  for (const GlobalPlane& p : run.planes) {
     const auto it = storeys_of_plane.find(p.id);
-    std::string text = "#" + std::to_string(p.id) + " " + planeKind(p.normal, p.facing) + ", " +
-                       std::to_string(p.observations.size()) + " obs.";
+    std::string text = "#" + std::to_string(p.id) + " " + planeKind(p.normal_world, facingOf(p)) +
+                       ", " + std::to_string(p.observations.size()) + " obs.";
     if (it == storeys_of_plane.end())
       text += ", not shown (above the ceilings)";
     else if (!(it->second.size() == 1 && *it->second.begin() < 0))
@@ -229,12 +229,12 @@ Figure srpKeyframeFigure(const ViewContext& c, int keyframe) {
   f.legend.push_back({LegendItem::Kind::kText, {}, "id: kind, n, d in the LiDAR frame"});
   for (int i : mine) {
     const WorldPatch& p = c.patches.patches[static_cast<std::size_t>(i)];
-    const SrpPlane& plane = run.planes[static_cast<std::size_t>(p.plane_index)];
-    const SrpObservation& o = plane.observations[static_cast<std::size_t>(p.observation)];
+    const GlobalPlane& plane = run.planes[static_cast<std::size_t>(p.plane_index)];
+    const PlaneObservation& o = plane.observations[static_cast<std::size_t>(p.observation)];
     std::string text = "#" + std::to_string(p.plane_id) + " " + planeKind(p.normal, p.facing) +
-                       ": n (" + fixed(o.normal_lidar.x(), 2) + " " + fixed(o.normal_lidar.y(), 2) +
-                       " " + fixed(o.normal_lidar.z(), 2) + "), d " + fixed(o.distance_lidar, 2) +
-                       " m";
+                       ": n (" + fixed(o.normal_keyframe.x(), 2) + " " +
+                       fixed(o.normal_keyframe.y(), 2) + " " + fixed(o.normal_keyframe.z(), 2) +
+                       "), d " + fixed(o.distance_keyframe, 2) + " m";
     f.legend.push_back({LegendItem::Kind::kSwatch, srpColour(p.plane_id), text});
     f.legend.push_back({LegendItem::Kind::kText,
                         {},

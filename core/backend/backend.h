@@ -1,35 +1,36 @@
 #pragma once
-/// The SRP back end (section V of the reference paper, docs/method/backend.md):
-/// keyframes from the odometry, structural representative planes of each
-/// keyframe's deskewed scan, their association with the global plane map, and
-/// the keyframe graph (odometry relative poses + plane observations) solved
-/// with Ceres whenever a plane constraint appears. After each solve the
-/// odometry is moved into the corrected frame (the correction addScan
-/// returns); at the end every scan's pose is the odometry pose corrected by
-/// interpolating the corrections of the keyframes around it.
+/// The back end's interface (section V of the reference paper,
+/// docs/method/backend.md): it takes the odometry's scans one by one, in time
+/// order, decides which become keyframes, and returns its best pose for each;
+/// finish() returns the final trajectory, keyframes and plane map. Two
+/// implementations: the SRP back end (srp_backend.h; keyframes, structural
+/// representative planes, keyframe graph) and the odometry-only back end
+/// (odometry_backend.h; `--no-srp`, the same keyframe rule, trajectory =
+/// odometry). Data flow is one way: nothing goes back to the odometry.
 #include <array>
 #include <cstdint>
 #include <memory>
 #include <optional>
-#include <string>
 #include <vector>
 
 #include "backend/association.h"
+#include "backend/backend_config.h"
 #include "backend/srp_extraction.h"
-#include "config/config.h"
-#include "odometry/odometry.h"
 #include "trajectory/tum.h"
+#include "types/plane_map.h"
+#include "types/pose.h"
+#include "types/scan.h"
 
 namespace storey {
 
-/// Counts and timings of the back end (the run report shows them).
+/// Counts and timings of the SRP back end (the run report shows them).
 struct BackendStats {
   std::int64_t scans = 0;
   std::int64_t keyframes = 0;
-  std::int64_t srps = 0;                ///< SRPs extracted over all keyframes
+  std::int64_t srps = 0;  ///< SRPs extracted over all keyframes
   std::int64_t keyframes_without_srp = 0;
-  std::int64_t planes = 0;              ///< global plane landmarks
-  std::int64_t observations = 0;        ///< plane observations in the graph
+  std::int64_t planes = 0;                 ///< global plane landmarks
+  std::int64_t observations = 0;           ///< plane observations in the graph
   std::array<std::int64_t, 4> outcomes{};  ///< per AssociationOutcome
   std::array<std::int64_t, static_cast<std::size_t>(backend::GateReject::kCount)> gate_rejects{};
   std::array<std::int64_t, static_cast<std::size_t>(backend::PlaneReject::kCount)> plane_rejects{};
@@ -45,38 +46,37 @@ struct BackendStats {
   double ms_final_optimisation = 0.0;
 };
 
-/// Checks the `backend:` values; throws storey::Error naming the key at fault.
-void validateBackendConfig(const BackendConfig& config);
-
-class SrpBackend {
- public:
-  explicit SrpBackend(const Config& config);
-  ~SrpBackend();
-  SrpBackend(const SrpBackend&) = delete;
-  SrpBackend& operator=(const SrpBackend&) = delete;
-
-  /// One odometry result, in time order, in the odometry's current world
-  /// frame. When the graph was optimised, returns T_corrected_old, which the
-  /// caller must pass to LidarInertialOdometry::applyCorrection before the
-  /// next result (results after it are expected in the corrected frame).
-  std::optional<Pose> addScan(const OdometryResult& scan);
-  /// Final solve of the whole graph and the wrong-association count.
-  void finish();
-
-  /// Final pose of the LiDAR for every scan (after finish()).
-  Trajectory trajectory() const;
-  /// The front end's own trajectory: the odometry with the corrections it
-  /// was given taken out again (continuous; what it would be on its own).
-  Trajectory odometry() const;
-  /// Keyframe poses after optimisation.
-  Trajectory keyframes() const;
-  /// Global planes with their observations (OUT/planes.json).
-  std::string planesJson() const;
-  const BackendStats& stats() const;
-
- private:
-  struct Impl;
-  std::unique_ptr<Impl> impl_;
+/// What the back end decided for one scan.
+struct BackendDecision {
+  bool keyframe = false;  ///< the scan is a keyframe (a graph vertex; always in the map)
+  /// The back end's current best pose of the scan: the odometry pose moved by
+  /// the latest graph correction (= the odometry pose with the back end off).
+  Pose T_world_lidar;
 };
+
+/// Everything the back end knows at the end of the log.
+struct SlamResult {
+  Trajectory odometry;    ///< the front end's pose of the LiDAR per scan
+  Trajectory trajectory;  ///< final pose per scan (= odometry with the back end off)
+  /// Keyframes at their final poses; the last scan of the log is always the
+  /// last keyframe (so the end of the walk is in the map and constrained).
+  Trajectory keyframes;
+  std::optional<PlaneMap> planes;     ///< global SRPs; absent with the back end off
+  std::optional<BackendStats> stats;  ///< SRP back end only
+};
+
+class Backend {
+ public:
+  virtual ~Backend() = default;
+  /// One odometry result, in time order: the scan's reference time [s], the
+  /// odometry's pose of the LiDAR and the scan deskewed to that time (LiDAR frame).
+  virtual BackendDecision addScan(double time, const Pose& T_world_lidar, const Scan& deskewed) = 0;
+  /// End of the log: the last scan becomes a keyframe, final solve.
+  virtual SlamResult finish() = 0;
+};
+
+/// The SRP back end when config.srp, else the odometry-only one. The config
+/// is validated (storey::Error naming the key at fault).
+std::unique_ptr<Backend> makeBackend(const BackendConfig& config);
 
 }  // namespace storey

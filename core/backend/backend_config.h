@@ -15,62 +15,79 @@ struct KeyframeConfig {
 
 /// Structural representative planes of a keyframe's deskewed scan.
 struct SrpExtractionConfig {
-  int min_points = 400;               ///< a plane needs at least this many scan points [>= 3]
-  int max_srps = 3;                   ///< SRPs kept per keyframe (largest, nearly orthogonal) [1, 3]
-  double explained_fraction = 0.8;    ///< stop detecting when this share of points is explained [0, 1]
-  int max_detected_planes = 8;        ///< planes detected per scan before the SRP choice [>= 1]
-  double orthogonal_tolerance_deg = 15.0;  ///< SRP normals within this of 90 deg of each other [deg]
-  double ransac_distance = 0.05;      ///< inlier distance of RANSAC and of the point count [m, > 0]
-  int ransac_iterations = 100;        ///< RANSAC hypotheses per plane [>= 1]
-  double voxel_size = 0.2;            ///< RANSAC runs on a voxel subsample of this size [m, > 0]
-  int ransac_max_points = 500;        ///< and on at most this many of its points [>= 10]
-  double min_range = 0.5;             ///< scan points nearer than this are ignored [m]
-  double max_range = 30.0;            ///< scan points farther than this are ignored [m]
-  double min_extent = 1.0;            ///< a plane's inliers span at least this (2nd axis, 4 std) [m]
-  double min_view_angle_deg = 1.0;    ///< median angle between the beams and the plane at least
-                                      ///< this, and the plane at least 3 ransac_distance from the
-                                      ///< sensor: else it is the sensor's own beam cone on the
-                                      ///< walls around it, not a surface [deg, [0, 45); 0 = off]
-  double point_sigma = 0.02;          ///< range noise assumed in the plane uncertainty [m, > 0]
-  int max_effective_points = 100;     ///< points counted as independent in the uncertainty
-                                      ///< (errors of a scan are correlated) [>= 3]
+  int min_points = 400;  ///< a plane needs at least this many scan points [>= 3]
+  int max_srps = 3;      ///< SRPs kept per keyframe (largest, nearly orthogonal) [1, 3]
+  double explained_fraction =
+      0.8;                      ///< stop detecting when this share of points is explained [0, 1]
+  int max_detected_planes = 8;  ///< planes detected per scan before the SRP choice [>= 1]
+  double orthogonal_tolerance_deg =
+      15.0;                         ///< SRP normals within this of 90 deg of each other [deg]
+  double ransac_distance = 0.05;    ///< inlier distance of RANSAC and of the point count [m, > 0]
+  int ransac_iterations = 100;      ///< RANSAC hypotheses per plane [>= 1]
+  double voxel_size = 0.2;          ///< RANSAC runs on a voxel subsample of this size [m, > 0]
+  int ransac_max_points = 500;      ///< and on at most this many of its points [>= 10]
+  double min_range = 0.5;           ///< scan points nearer than this are ignored [m]
+  double max_range = 30.0;          ///< scan points farther than this are ignored [m]
+  double min_extent = 1.0;          ///< a plane's inliers span at least this (2nd axis, 4 std) [m]
+  double min_view_angle_deg = 1.0;  ///< median angle between the beams and the plane at least
+                                    ///< this, and the plane at least 3 ransac_distance from the
+                                    ///< sensor: else it is the sensor's own beam cone on the
+                                    ///< walls around it, not a surface [deg, [0, 45); 0 = off]
+  double point_sigma = 0.02;        ///< range noise assumed in the plane uncertainty [m, > 0]
+  int max_effective_points = 100;   ///< points counted as independent in the uncertainty
+                                    ///< (errors of a scan are correlated) [>= 3]
 };
 
 /// Matching the SRPs of a keyframe with the global plane map.
 struct AssociationConfig {
-  double angle_gate_deg = 6.0;      ///< largest normal angle of a match [deg, > 0]
-  double distance_gate = 0.2;       ///< largest |d| difference of a match [m, > 0]
-  double mahalanobis_gate = 16.27;  ///< chi-square (3 dof) gate with the uncertainties (99.9 %) [> 0]
-  double pose_sigma_rotation = 0.02;     ///< uncertainty of the predicted keyframe rotation [rad, > 0]
+  double angle_gate_deg = 6.0;  ///< largest normal angle of a match [deg, > 0]
+  double distance_gate = 0.2;   ///< largest |d| difference of a match [m, > 0]
+  double mahalanobis_gate =
+      16.27;  ///< chi-square (3 dof) gate with the uncertainties (99.9 %) [> 0]
+  double pose_sigma_rotation = 0.02;  ///< uncertainty of the predicted keyframe rotation [rad, > 0]
   double pose_sigma_translation = 0.05;  ///< same for its translation [m, > 0]
   double plane_sigma_rotation = 0.005;   ///< landmark and model uncertainty of a normal [rad, > 0]
   double plane_sigma_distance = 0.02;    ///< same for a distance [m, > 0]
-  double ambiguity_margin = 4.0;    ///< joint hypotheses closer than this in cost are ambiguous [> 0]
+  double ambiguity_margin = 4.0;  ///< joint hypotheses closer than this in cost are ambiguous [> 0]
   double new_plane_separation = 2.0;  ///< no new plane within this many gates of a known one [>= 1]
-  int confirmed_observations = 2;     ///< ... if that one was seen by at least this many keyframes [>= 1]
+  int confirmed_observations =
+      2;  ///< ... if that one was seen by at least this many keyframes [>= 1]
 };
 
 /// The keyframe factor graph.
 struct GraphConfig {
-  double odometry_sigma_translation = 0.01;         ///< relative-pose std per keyframe edge [m, > 0]
-  double odometry_sigma_translation_per_m = 0.01;   ///< added per metre travelled [m/m, >= 0]
-  double odometry_sigma_rotation = 0.002;           ///< relative-pose rotation std per edge [rad, > 0]
-  double odometry_sigma_rotation_per_m = 0.002;     ///< added per metre travelled [rad/m, >= 0]
-  double plane_sigma_rotation = 0.002;  ///< added to a plane observation's normal std (model error) [rad]
-  double plane_sigma_distance = 0.01;   ///< added to its distance std [m]
-  double plane_loss_width = 3.0;    ///< Cauchy loss scale on the whitened plane residual [> 0]
-  double level_prior_sigma = 0.004; ///< floors level and walls plumb in the gravity-aligned world:
-                                    ///< prior std on their normals [rad]; 0 = off
-  double level_tolerance_deg = 5.0; ///< planes this close to level or plumb get the prior [deg]
-  double first_tilt_sigma = 0.01;   ///< roll/pitch std of the first keyframe (IMU initialisation)
-                                    ///< [rad]; its position and yaw are held (gauge); 0 = all held
-  int max_iterations = 6;           ///< Levenberg-Marquardt iterations per keyframe [>= 1]
-  int window_keyframes = 40;        ///< newest keyframes optimised at each keyframe (older ones
-                                    ///< held fixed); 0 = always the whole graph [>= 0]
-  int full_every = 25;              ///< the whole graph every n optimisations [>= 1]
-  int final_iterations = 50;        ///< iterations of the whole-graph solve at the end [>= 0]
-  double outlier_chi2 = 16.27;      ///< observations with a larger whitened residual after the
-                                    ///< final solve are reported as wrong associations [> 0]
+  double odometry_sigma_translation = 0.01;        ///< relative-pose std per keyframe edge [m, > 0]
+  double odometry_sigma_translation_per_m = 0.01;  ///< added per metre travelled [m/m, >= 0]
+  double odometry_sigma_rotation = 0.002;        ///< relative-pose rotation std per edge [rad, > 0]
+  double odometry_sigma_rotation_per_m = 0.002;  ///< added per metre travelled [rad/m, >= 0]
+  double plane_sigma_rotation =
+      0.002;  ///< added to a plane observation's normal std (model error) [rad]
+  double plane_sigma_distance = 0.01;  ///< added to its distance std [m]
+  double plane_loss_width = 3.0;       ///< Cauchy loss scale on the whitened plane residual [> 0]
+  double level_prior_sigma = 0.004;  ///< floors level and walls plumb in the gravity-aligned world:
+                                     ///< prior std on their normals [rad]; 0 = off
+  double level_tolerance_deg = 5.0;  ///< planes this close to level or plumb get the prior [deg]
+  double first_tilt_sigma = 0.01;    ///< roll/pitch std of the first keyframe (IMU initialisation)
+                                     ///< [rad]; its position and yaw are held (gauge); 0 = all held
+  int max_iterations = 6;            ///< Levenberg-Marquardt iterations per keyframe [>= 1]
+  int window_keyframes = 40;         ///< newest keyframes optimised at each keyframe (older ones
+                                     ///< held fixed); 0 = always the whole graph [>= 0]
+  int full_every = 25;               ///< the whole graph every n optimisations [>= 1]
+  int final_iterations = 50;         ///< iterations of the whole-graph solve at the end [>= 0]
+  double outlier_chi2 = 16.27;       ///< observations with a larger whitened residual after the
+                                     ///< final solve are reported as wrong associations [> 0]
+};
+
+/// The back end (SRP constraints, keyframe graph).
+struct BackendConfig {
+  bool srp = true;  ///< SRP back end on; off (`--no-srp`): trajectory = odometry
+  KeyframeConfig keyframes;
+  SrpExtractionConfig extraction;
+  AssociationConfig association;
+  GraphConfig graph;
+
+  /// Checks value ranges; throws storey::Error naming the key (under `backend.`) at fault.
+  void validate() const;
 };
 
 }  // namespace storey

@@ -3,31 +3,12 @@
 #include <cmath>
 #include <sstream>
 
-#include "backend/backend.h"
 #include "common/error.h"
-#include "config/sensor_yaml.h"
-#include "config/yaml_section.h"
-#include "storeys/storey_segmentation.h"
+#include "common/yaml_section.h"
+#include "io/calibration_file.h"
+#include "io/sensor_yaml.h"
 
 namespace storey {
-
-const char* toString(LidarModel model) {
-  switch (model) {
-    case LidarModel::kVlp16: return "VLP-16";
-    case LidarModel::kHdl32e: return "HDL-32E";
-    case LidarModel::kOs1_64: return "OS1-64";
-    case LidarModel::kGeneric: return "generic";
-  }
-  return "generic";
-}
-
-LidarModel lidarModelFromString(const std::string& name) {
-  for (LidarModel m : {LidarModel::kVlp16, LidarModel::kHdl32e, LidarModel::kOs1_64,
-                       LidarModel::kGeneric}) {
-    if (name == toString(m)) return m;
-  }
-  throw Error("must be one of VLP-16, HDL-32E, OS1-64, generic; got '" + name + "'");
-}
 
 namespace {
 
@@ -317,102 +298,38 @@ Config loadConfig(const std::string& path) {
   return config;
 }
 
-namespace {
-
-void require(bool ok, const std::string& key, const std::string& what) {
-  if (!ok) throw Error("key '" + key + "' " + what);
+void applyCalibrationFile(Config& config, const std::string& path) {
+  const Calibration calibration = readCalibrationFile(path, calibrationOf(config));
+  Config result = config;  // all or nothing: `config` is untouched on error
+  result.sensor = calibration.sensor;
+  result.input.points_topic = calibration.points_topic;
+  result.input.imu_topic = calibration.imu_topic;
+  try {
+    result.validate();
+  } catch (const Error& e) {
+    throw Error(path + " (calibration): " + e.what());
+  }
+  config = result;
 }
 
-void validateRenderConfig(const RenderConfig& r) {
-  require(r.width >= 320 && r.width <= 8192, "render.width", "must be within [320, 8192] px");
-  require(r.height >= 240 && r.height <= 8192, "render.height", "must be within [240, 8192] px");
-  require(r.max_display_points >= 1000, "render.max_display_points", "must be >= 1000");
-  require(r.point_size > 0.0 && r.point_size <= 20.0, "render.point_size",
-          "must be within (0, 20] px");
-  require(r.line_width > 0.0 && r.line_width <= 20.0, "render.line_width",
-          "must be within (0, 20] px");
-  require(r.keyframe >= -1, "render.keyframe", "must be a keyframe index or -1 (automatic)");
-  require(r.keyframe_radius > 0.0, "render.keyframe_radius", "must be positive");
-  require(r.srp_point_distance > 0.0, "render.srp_point_distance", "must be positive");
-  require(r.ceiling_cut >= 0.0, "render.ceiling_cut", "must be >= 0");
+Config loadRunConfig(const std::string& config_path, const std::string& calibration_path) {
+  Config config = config_path.empty() ? Config{} : loadConfig(config_path);
+  if (!calibration_path.empty()) applyCalibrationFile(config, calibration_path);
+  return config;
 }
 
-}  // namespace
+Calibration calibrationOf(const Config& config) {
+  return {config.sensor, config.input.points_topic, config.input.imu_topic};
+}
 
 void Config::validate() const {
-  require(input.min_range >= 0.0, "input.min_range", "must be >= 0");
-  require(input.max_range > input.min_range, "input.max_range",
-          "must be larger than 'input.min_range'");
-  require(input.velodyne_model == "auto" || input.velodyne_model == "VLP-16" ||
-              input.velodyne_model == "HDL-32E",
-          "input.velodyne_model", "must be auto, VLP-16 or HDL-32E");
-  require(input.pcap_clock == "sensor" || input.pcap_clock == "capture", "input.pcap_clock",
-          "must be sensor or capture");
-  require(input.pcap_data_port >= 0 && input.pcap_data_port <= 65535, "input.pcap_data_port",
-          "must be a UDP port (0 = any)");
-  require(input.pcap_position_port >= 0 && input.pcap_position_port <= 65535,
-          "input.pcap_position_port", "must be a UDP port (0 = any)");
-  require(std::abs(sensor.time_offset_lidar_to_imu) <= 1.0, "sensor.time_offset_lidar_to_imu",
-          "must be within [-1, 1] s");
-  require(sensor.imu.rate_hz <= 10000.0, "sensor.imu.rate_hz", "must be <= 10000");
-  const OdometryConfig& o = odometry;
-  require(o.window_size >= 2, "odometry.window_size", "must be >= 2");
-  require(o.matching_rounds >= 1, "odometry.matching_rounds", "must be >= 1");
-  require(o.max_iterations >= 1, "odometry.max_iterations", "must be >= 1");
-  require(o.neighbours >= 3 && o.neighbours <= VoxelMap::kMaxNeighbours, "odometry.neighbours",
-          "must be within [3, 16]");
-  for (const auto& [key, value] :
-       {std::pair<const char*, double>{"odometry.max_neighbour_distance", o.max_neighbour_distance},
-        {"odometry.plane_fit_tolerance", o.plane_fit_tolerance},
-        {"odometry.line_eigen_ratio", o.line_eigen_ratio},
-        {"odometry.max_point_distance", o.max_point_distance},
-        {"odometry.point_sigma", o.point_sigma},
-        {"odometry.huber_threshold", o.huber_threshold},
-        {"odometry.degenerate_translation_std", o.degenerate_translation_std},
-        {"odometry.degenerate_rotation_std", o.degenerate_rotation_std},
-        {"odometry.max_scan_gap", o.max_scan_gap},
-        {"odometry.prior_velocity_sigma", o.prior_velocity_sigma},
-        {"odometry.prior_gyro_bias_sigma", o.prior_gyro_bias_sigma},
-        {"odometry.prior_accel_bias_sigma", o.prior_accel_bias_sigma},
-        {"odometry.pose_sigma_translation", o.pose_sigma_translation},
-        {"odometry.pose_sigma_rotation", o.pose_sigma_rotation},
-        {"odometry.local_map.voxel_size", o.local_map.voxel_size},
-        {"odometry.local_map.max_range", o.local_map.max_range},
-        {"odometry.imu_init.still_window", o.imu_init.still_window},
-        {"odometry.imu_init.max_gyro_std", o.imu_init.max_gyro_std},
-        {"odometry.imu_init.max_accel_std", o.imu_init.max_accel_std},
-        {"odometry.features.edge_threshold", o.features.edge_threshold},
-        {"odometry.features.occlusion_gap", o.features.occlusion_gap}}) {
-    require(value > 0.0, key, "must be positive");
-  }
-  require(o.features.neighbours >= 2, "odometry.features.neighbours", "must be >= 2");
-  require(o.features.sectors >= 1, "odometry.features.sectors", "must be >= 1");
-  require(o.features.plane_threshold < o.features.edge_threshold,
-          "odometry.features.plane_threshold", "must be below 'odometry.features.edge_threshold'");
-  require(o.local_map.max_points_per_voxel >= 1, "odometry.local_map.max_points_per_voxel",
-          "must be >= 1");
-  require(o.max_neighbour_distance <= o.local_map.voxel_size,
-          "odometry.max_neighbour_distance",
-          "must not exceed 'odometry.local_map.voxel_size' (neighbours are searched in the 27 "
-          "voxels around a point)");
-  require(o.imu_init.noise_margin >= 1.0, "odometry.imu_init.noise_margin", "must be >= 1");
-  try {
-    o.imu_init.validate();
-  } catch (const Error& e) {
-    throw Error(std::string("in section 'odometry.imu_init': ") + e.what());
-  }
-  try {
-    o.preintegration.validate();
-  } catch (const Error& e) {
-    throw Error(std::string("in section 'odometry.preintegration': ") + e.what());
-  }
-  require(map.scan_spacing > 0.0, "map.scan_spacing", "must be positive");
-  require(map.scan_angle_deg > 0.0, "map.scan_angle_deg", "must be positive");
-  require(map.voxel_size > 0.0, "map.voxel_size", "must be positive");
-  require(map.max_range > 0.0, "map.max_range", "must be positive");
-  validateBackendConfig(backend);
-  validateStoreysConfig(storeys);
-  validateRenderConfig(render);
+  input.validate();
+  sensor.validate();
+  odometry.validate();
+  map.validate();
+  backend.validate();
+  storeys.validate();
+  render.validate();
 }
 
 }  // namespace storey

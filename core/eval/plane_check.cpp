@@ -3,10 +3,9 @@
 #include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
-#include <fstream>
-#include <nlohmann/json.hpp>
 
 #include "common/error.h"
+#include "export/planes_json.h"
 
 namespace storey::eval {
 
@@ -16,11 +15,6 @@ std::size_t PlaneCheck::wrongNotDownWeighted() const {
 }
 
 namespace {
-
-Eigen::Vector3d vec3(const nlohmann::json& j, const std::string& what) {
-  if (!j.is_array() || j.size() != 3) throw Error(what + " is not an array of 3 numbers");
-  return {j[0].get<double>(), j[1].get<double>(), j[2].get<double>()};
-}
 
 /// The truth pose nearest to t (the keyframes are scans, stamped like the truth).
 const Pose& truthAt(const Trajectory& gt, double t, double tolerance, const std::string& where) {
@@ -43,63 +37,48 @@ PlaneCheck checkPlanes(const std::string& planes_path, const Trajectory& gt,
   if (!(options.max_offset > 0.0) || !(options.max_angle_deg > 0.0) ||
       !(options.max_time_difference >= 0.0))
     throw Error("eval: plane check limits must be positive");
-  std::ifstream in(planes_path);
-  if (!in) throw Error(planes_path + ": cannot open the planes file");
-  nlohmann::json root;
-  try {
-    root = nlohmann::json::parse(in);
-  } catch (const nlohmann::json::exception& e) {
-    throw Error(planes_path + ": not JSON (" + e.what() + ")");
-  }
-  if (!root.is_object() || !root.contains("planes") || !root["planes"].is_array())
-    throw Error(planes_path + ": no 'planes' array (not a planes.json of storey run)");
+  const PlaneMap planes = readPlanesJson(planes_path);
   if (gt.empty()) throw Error("eval: the true trajectory is empty");
 
   PlaneCheck result;
   result.max_offset = options.max_offset;
   result.max_angle_deg = options.max_angle_deg;
   const double cos_max = std::cos(options.max_angle_deg * M_PI / 180.0);
-  try {
-    for (const auto& plane : root["planes"]) {
-      const int id = plane.at("id").get<int>();
-      const std::string where = planes_path + ": plane " + std::to_string(id);
-      const Eigen::Vector3d n_plane = vec3(plane.at("normal"), where + " normal").normalized();
-      const auto& observations = plane.at("observations");
-      struct Placed {
-        Eigen::Vector3d normal_world, centroid_world;
-        int keyframe;
-        bool outlier;
-      };
-      std::vector<Placed> placed;
-      for (const auto& o : observations) {
-        const Pose& T_world_lidar =
-            truthAt(gt, o.at("time").get<double>(), options.max_time_difference, where);
-        placed.push_back(
-            {T_world_lidar.rotation() * vec3(o.at("normal"), where + " observation normal"),
-             T_world_lidar * vec3(o.at("centroid"), where + " observation centroid"),
-             o.at("keyframe").get<int>(), o.at("outlier").get<bool>()});
-      }
-      ++result.planes;
-      if (placed.empty()) continue;
-      std::vector<double> offsets;
-      for (const Placed& p : placed) offsets.push_back(n_plane.dot(p.centroid_world));
-      std::vector<double> sorted = offsets;
-      std::nth_element(sorted.begin(),
-                       sorted.begin() + static_cast<std::ptrdiff_t>(sorted.size() / 2),
-                       sorted.end());
-      const double median = sorted[sorted.size() / 2];
-      for (std::size_t i = 0; i < placed.size(); ++i) {
-        ++result.observations;
-        result.down_weighted += placed[i].outlier;
-        const double cos_angle = std::min(1.0, std::abs(placed[i].normal_world.dot(n_plane)));
-        const double offset = offsets[i] - median;
-        if (cos_angle < cos_max || std::abs(offset) > options.max_offset)
-          result.wrong.push_back({id, placed[i].keyframe, offset,
-                                  std::acos(cos_angle) * 180.0 / M_PI, placed[i].outlier});
-      }
+  for (const GlobalPlane& plane : planes.planes) {
+    const std::string where = planes_path + ": plane " + std::to_string(plane.id);
+    const Eigen::Vector3d n_plane = plane.normal_world.normalized();
+    struct Placed {
+      Eigen::Vector3d normal_world, centroid_world;
+      int keyframe;
+      bool outlier;
+    };
+    std::vector<Placed> placed;
+    for (const PlaneObservation& o : plane.observations) {
+      if (!o.time || !o.centroid_keyframe)
+        throw Error(where +
+                    ": an observation without time or centroid (planes.json of an "
+                    "older version?)");
+      const Pose& T_world_lidar = truthAt(gt, *o.time, options.max_time_difference, where);
+      placed.push_back({T_world_lidar.rotation() * o.normal_keyframe,
+                        T_world_lidar * *o.centroid_keyframe, o.keyframe, o.outlier});
     }
-  } catch (const nlohmann::json::exception& e) {
-    throw Error(planes_path + ": " + e.what());
+    ++result.planes;
+    if (placed.empty()) continue;
+    std::vector<double> offsets;
+    for (const Placed& p : placed) offsets.push_back(n_plane.dot(p.centroid_world));
+    std::vector<double> sorted = offsets;
+    std::nth_element(sorted.begin(),
+                     sorted.begin() + static_cast<std::ptrdiff_t>(sorted.size() / 2), sorted.end());
+    const double median = sorted[sorted.size() / 2];
+    for (std::size_t i = 0; i < placed.size(); ++i) {
+      ++result.observations;
+      result.down_weighted += placed[i].outlier;
+      const double cos_angle = std::min(1.0, std::abs(placed[i].normal_world.dot(n_plane)));
+      const double offset = offsets[i] - median;
+      if (cos_angle < cos_max || std::abs(offset) > options.max_offset)
+        result.wrong.push_back({plane.id, placed[i].keyframe, offset,
+                                std::acos(cos_angle) * 180.0 / M_PI, placed[i].outlier});
+    }
   }
   return result;
 }

@@ -159,12 +159,11 @@ void summarise(RegistrationBiasResult& result) {
 }  // namespace
 
 RegistrationBiasResult measureRegistrationBias(LogReader& log, const Trajectory& truth,
-                                               const Config& config,
+                                               const OdometryConfig& odo,
                                                const RegistrationBiasOptions& options) {
   if (!(options.to >= options.from))
     throw Error("registration bias: --to (" + std::to_string(options.to) +
                 " s) is before --from (" + std::to_string(options.from) + " s)");
-  const OdometryConfig& odo = config.odometry;
   options.truth.validate();
   VoxelMap plane_map(odo.local_map), edge_map(odo.local_map);
   // The odometry inserts a scan into its map when it leaves the window, so

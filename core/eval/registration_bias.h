@@ -20,8 +20,8 @@
 
 #include <Eigen/Core>
 
-#include "config/config.h"
 #include "eval/association.h"
+#include "odometry/odometry_config.h"
 #include "trajectory/tum.h"
 
 namespace storey {
@@ -77,7 +77,7 @@ struct RegistrationBiasResult {
 /// (T_world_lidar, TUM, e.g. the simulator's groundtruth_lidar.tum). Throws
 /// storey::Error when the truth covers no evaluated scan.
 RegistrationBiasResult measureRegistrationBias(LogReader& log, const Trajectory& truth,
-                                               const Config& config,
+                                               const OdometryConfig& odometry,
                                                const RegistrationBiasOptions& options = {});
 
 /// The per-scan table as CSV (header line first), written atomically.

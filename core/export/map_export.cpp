@@ -1,7 +1,6 @@
 #include "export/map_export.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <nlohmann/json.hpp>
@@ -9,7 +8,6 @@
 
 #include "common/atomic_file.h"
 #include "common/error.h"
-#include "common/log.h"
 #include "export/point_cloud_writers.h"
 
 namespace storey {
@@ -17,10 +15,6 @@ namespace storey {
 namespace fs = std::filesystem;
 
 namespace {
-
-double secondsSince(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
 
 std::string storeyStem(int index) {
   char name[32];
@@ -31,6 +25,8 @@ std::string storeyStem(int index) {
 nlohmann::json optionalNumber(const std::optional<double>& v) {
   return v ? nlohmann::json(*v) : nlohmann::json(nullptr);
 }
+
+}  // namespace
 
 nlohmann::json storeyTableJson(const std::vector<StoreyInfo>& storeys) {
   nlohmann::json list = nlohmann::json::array();
@@ -53,8 +49,6 @@ nlohmann::json storeyTableJson(const std::vector<StoreyInfo>& storeys) {
   return list;
 }
 
-}  // namespace
-
 std::string storeysJson(const std::vector<StoreyInfo>& storeys, double map_voxel_size) {
   nlohmann::json root;
   root["format"] = "storey-storeys";
@@ -65,9 +59,9 @@ std::string storeysJson(const std::vector<StoreyInfo>& storeys, double map_voxel
   return root.dump(2) + "\n";
 }
 
-std::vector<std::string> exportMap(const MapCloud& map, const StoreySegmentation& segmentation,
-                                   double map_voxel_size, const std::string& out_dir,
-                                   const ProgressFn& progress) {
+std::vector<std::string> writeMapFiles(const std::string& out_dir, const MapCloud& map,
+                                       const StoreySegmentation& segmentation,
+                                       double map_voxel_size, const ProgressFn& progress) {
   const fs::path out(out_dir);
   const fs::path storeys_dir = out / "storeys";
   std::error_code ec;
@@ -109,92 +103,13 @@ std::vector<std::string> exportMap(const MapCloud& map, const StoreySegmentation
   const std::regex stale("storey_[0-9]+\\.(las|ply)");
   for (const auto& entry : fs::directory_iterator(storeys_dir, ec)) {
     const std::string name = entry.path().filename().string();
-    if (std::regex_match(name, stale) &&
-        std::find(kept.begin(), kept.end(), name) == kept.end())
+    if (std::regex_match(name, stale) && std::find(kept.begin(), kept.end(), name) == kept.end())
       fs::remove(entry.path(), ec);
   }
   writeFileAtomically((out / "storeys.json").string(),
                       storeysJson(segmentation.storeys, map_voxel_size));
   done("storeys.json");
   return files;
-}
-
-MapOutputs buildAndExportMap(const MapBuilder& builder,
-                             const std::vector<Pose>& T_world_lidar_per_scan,
-                             const std::vector<Eigen::Vector3d>& sensor_position_per_label,
-                             const StoreysConfig& storeys_config, const std::string& out_dir,
-                             const ProgressFn& progress) {
-  validateStoreysConfig(storeys_config);
-  MapOutputs outputs;
-  auto t0 = std::chrono::steady_clock::now();
-  MapCloud map = builder.build(T_world_lidar_per_scan, progress);
-  outputs.seconds_build = secondsSince(t0);
-  outputs.build = builder.stats();
-  outputs.map_points = map.size();
-  outputs.map_voxel_size = builder.config().voxel_size;
-  logInfo("map: " + std::to_string(map.size()) + " points from " +
-          std::to_string(outputs.build.keyframes) + " scans");
-
-  t0 = std::chrono::steady_clock::now();
-  StoreySegmentation segmentation;
-  if (storeys_config.enabled) {
-    segmentation = segmentStoreys(map, sensor_position_per_label, storeys_config, progress);
-    if (segmentation.storeys.empty())
-      logWarning("storeys: no floor slab of at least " +
-                 std::to_string(storeys_config.min_floor_area) + " m^2 found; no storeys");
-  } else {
-    logInfo("storeys: segmentation switched off (storeys.enabled: false)");
-  }
-  outputs.seconds_storeys = secondsSince(t0);
-  outputs.storeys = segmentation.storeys;
-  outputs.segmentation = segmentation.stats;
-  for (const StoreyInfo& s : segmentation.storeys) {
-    char line[160];
-    std::snprintf(line, sizeof(line), "storey %d: floor %.3f m, footprint %.1f m^2, %zu points",
-                  s.index, s.floor_elevation, s.footprint_area, s.points);
-    logInfo(line);
-  }
-
-  t0 = std::chrono::steady_clock::now();
-  outputs.files = exportMap(map, segmentation, outputs.map_voxel_size, out_dir, progress);
-  outputs.seconds_export = secondsSince(t0);
-  outputs.map = std::make_shared<MapCloud>(std::move(map));
-  return outputs;
-}
-
-std::string addMapToReport(const std::string& report_json, const MapOutputs& o) {
-  nlohmann::json report = report_json.empty() ? nlohmann::json::object()
-                                              : nlohmann::json::parse(report_json, nullptr, false);
-  if (!report.is_object()) throw Error("addMapToReport: the run report is not a JSON object");
-  const StoreySegmentationStats& s = o.segmentation;
-  report["map"] = {
-      {"points", o.map_points},
-      {"voxel_size_m", o.map_voxel_size},
-      {"keyframes", o.build.keyframes},
-      {"keyframe_points", o.build.points_in},
-      {"keyframe_points_stored", o.build.points_stored},
-      {"left_out", {{"beyond_range", o.build.points_beyond_range},
-                    {"non_finite", o.build.points_non_finite}}},
-      {"segmentation",
-       {{"subsampled_points", s.subsampled_points},
-        {"planar_regions", s.regions},
-        {"floor_candidates", s.floor_candidates},
-        {"ceiling_candidates", s.ceiling_candidates},
-        {"floor_slabs", s.floor_slabs},
-        {"slabs_rejected", {{"smaller_than_min_floor_area", s.slabs_too_small},
-                            {"within_min_storey_height_of_a_larger_floor", s.slabs_too_close}}},
-        {"stair_cells", s.stair_cells}}},
-      {"files", o.files},
-      {"seconds", {{"build", o.seconds_build},
-                   {"storeys", o.seconds_storeys},
-                   {"normals", s.seconds_normals},
-                   {"regions", s.seconds_regions},
-                   {"footprints", s.seconds_footprints},
-                   {"export", o.seconds_export}}}};
-  nlohmann::json table = storeyTableJson(o.storeys);
-  for (nlohmann::json& entry : table) entry.erase("footprint");  // in storeys.json
-  report["storeys"] = table;
-  return report.dump(2);
 }
 
 }  // namespace storey

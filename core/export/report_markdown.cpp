@@ -54,7 +54,10 @@ void timingRows(std::ostringstream& md, const std::string& prefix, const Json& t
 }  // namespace
 
 std::string reportMarkdown(const std::string& report_json, const std::vector<ReportImage>& images) {
-  const Json report = Json::parse(report_json, nullptr, false);
+  return reportMarkdown(Json::parse(report_json, nullptr, false), images);
+}
+
+std::string reportMarkdown(const Json& report, const std::vector<ReportImage>& images) {
   if (!report.is_object()) throw Error("report.md: the run report is not a JSON object");
   std::ostringstream md;
   md << "# Storey run report\n\n";
@@ -77,13 +80,14 @@ std::string reportMarkdown(const std::string& report_json, const std::vector<Rep
     };
     md << "## Table I: end-point drift\n\n"
           "Last pose relative to the first (the walk returns to its start).\n\n"
-          "| dX m | dY m | dZ m | dXYZ m | dYaw ° | dPitch ° | dRoll ° | dAngle ° | path m | dXYZ % of path |\n"
+          "| dX m | dY m | dZ m | dXYZ m | dYaw ° | dPitch ° | dRoll ° | dAngle ° | path m | dXYZ "
+          "% of path |\n"
           "|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
     md << "| " << number(*d, "dX_m", 3) << " | " << number(*d, "dY_m", 3) << " | "
        << number(*d, "dZ_m", 3) << " | " << number(*d, "dXYZ_m", 3) << " | " << deg("dYaw_rad")
        << " | " << deg("dPitch_rad") << " | " << deg("dRoll_rad") << " | " << deg("dAngle_rad")
-       << " | " << number(*d, "path_length_m", 1) << " | "
-       << number(*d, "dXYZ_percent_of_path", 3) << " |\n\n";
+       << " | " << number(*d, "path_length_m", 1) << " | " << number(*d, "dXYZ_percent_of_path", 3)
+       << " |\n\n";
   }
 
   const Json* odometry_timing = find(report, {"odometry", "timing_ms"});
@@ -107,7 +111,8 @@ std::string reportMarkdown(const std::string& report_json, const std::vector<Rep
     if (storeys->empty()) {
       md << "No storey found (no floor slab large enough).\n\n";
     } else {
-      md << "| storey | floor m | ceiling m | clear height m | floor to floor m | area m² | points | stair points |\n"
+      md << "| storey | floor m | ceiling m | clear height m | floor to floor m | area m² | points "
+            "| stair points |\n"
             "|---:|---:|---:|---:|---:|---:|---:|---:|\n";
       for (const Json& s : *storeys) {
         md << "| " << text(find(s, {"index"})) << " | " << number(s, "floor_elevation", 3) << " | "
@@ -120,8 +125,9 @@ std::string reportMarkdown(const std::string& report_json, const std::vector<Rep
   }
 
   if (const Json* map = find(report, {"map"}); map && map->is_object()) {
-    md << "## Map\n\n" << text(find(*map, {"points"})) << " points at "
-       << number(find(*map, {"voxel_size_m"}), 3) << " m from " << text(find(*map, {"keyframes"}))
+    md << "## Map\n\n"
+       << text(find(*map, {"points"})) << " points at " << number(find(*map, {"voxel_size_m"}), 3)
+       << " m from " << text(find(*map, {"keyframes"}))
        << " scans (the keyframes and the map scans between them).";
     if (const Json* files = find(*map, {"files"}); files && files->is_array()) {
       md << " Files:";
@@ -138,8 +144,8 @@ std::string reportMarkdown(const std::string& report_json, const std::vector<Rep
     }
   }
 
-  if (const Json* warnings = find(report, {"warnings"}); warnings && warnings->is_array() &&
-                                                         !warnings->empty()) {
+  if (const Json* warnings = find(report, {"warnings"});
+      warnings && warnings->is_array() && !warnings->empty()) {
     md << "## Warnings\n\n";
     for (const Json& w : *warnings) md << "- " << text(&w) << "\n";
     md << "\n";
@@ -150,6 +156,11 @@ std::string reportMarkdown(const std::string& report_json, const std::vector<Rep
 void writeReportMarkdown(const std::string& report_json, const std::string& path,
                          const std::vector<ReportImage>& images) {
   writeFileAtomically(path, reportMarkdown(report_json, images));
+}
+
+void writeReportMarkdown(const Json& report, const std::string& path,
+                         const std::vector<ReportImage>& images) {
+  writeFileAtomically(path, reportMarkdown(report, images));
 }
 
 }  // namespace storey

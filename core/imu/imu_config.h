@@ -1,6 +1,6 @@
 #pragma once
 /// Parameters of the IMU stage, defaults in the structs, units beside each
-/// field. The sensor's noise model is SensorConfig::imu (config/config.h).
+/// field. The sensor's noise model is SensorConfig::imu (types/sensor.h).
 namespace storey {
 
 /// Initialisation from a still start (imu_initializer.h).

@@ -19,10 +19,10 @@
 #include <cstdint>
 #include <vector>
 
-#include "config/config.h"
 #include "imu/imu_config.h"
 #include "imu/imu_state.h"
 #include "types/imu_sample.h"
+#include "types/sensor.h"
 
 namespace storey {
 

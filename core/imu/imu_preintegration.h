@@ -33,10 +33,10 @@
 #include <cstdint>
 #include <vector>
 
-#include "config/config.h"
 #include "imu/imu_config.h"
 #include "imu/imu_signal.h"
 #include "imu/imu_state.h"
+#include "types/sensor.h"
 
 namespace storey {
 

@@ -4,8 +4,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "config/config.h"
 #include "types/scan.h"
+#include "types/sensor.h"
 
 namespace storey {
 

@@ -7,9 +7,10 @@
 #include <string>
 #include <variant>
 
-#include "config/config.h"
+#include "io/input_config.h"
 #include "types/imu_sample.h"
 #include "types/scan.h"
+#include "types/sensor.h"
 
 namespace storey {
 
@@ -17,9 +18,9 @@ using LogMessage = std::variant<Scan, ImuSample>;
 
 /// What a reader skipped or repaired, with the reason; shown in the run report.
 struct LogReadStats {
-  std::int64_t scans = 0;                 ///< scans delivered
-  std::int64_t imu_samples = 0;           ///< IMU samples delivered
-  std::int64_t points = 0;                ///< points delivered
+  std::int64_t scans = 0;                       ///< scans delivered
+  std::int64_t imu_samples = 0;                 ///< IMU samples delivered
+  std::int64_t points = 0;                      ///< points delivered
   std::map<std::string, std::int64_t> dropped;  ///< reason -> count (points or messages)
 };
 
@@ -38,6 +39,7 @@ class LogReader {
 
 /// Opens a log by its content (ROS1 bag for now). Throws storey::Error when the
 /// file is missing, empty, not a supported format, or lacks point clouds or IMU.
-std::unique_ptr<LogReader> openLog(const std::string& path, const Config& config);
+std::unique_ptr<LogReader> openLog(const std::string& path, const InputConfig& input,
+                                   const SensorConfig& sensor);
 
 }  // namespace storey

@@ -13,9 +13,9 @@
 #include "io/pcd_file.h"
 #include "io/pcd_folder_reader.h"
 #include "io/rosbag_file.h"
+#include "io/topic_selection.h"
 #include "io/velodyne/pcap_file.h"
 #include "io/velodyne/velodyne_pcap_reader.h"
-#include "io/topic_selection.h"
 
 namespace storey {
 namespace {
@@ -106,8 +106,10 @@ void summarizeStreams(LogReader& reader, const std::string& scan_name, const std
   bool have = false;
   for (auto* acc : {&scans, &imu}) {
     if (acc->summary.count == 0) continue;
-    out.start_ns = have ? std::min(out.start_ns, acc->summary.first_stamp_ns) : acc->summary.first_stamp_ns;
-    out.end_ns = have ? std::max(out.end_ns, acc->summary.last_stamp_ns) : acc->summary.last_stamp_ns;
+    out.start_ns =
+        have ? std::min(out.start_ns, acc->summary.first_stamp_ns) : acc->summary.first_stamp_ns;
+    out.end_ns =
+        have ? std::max(out.end_ns, acc->summary.last_stamp_ns) : acc->summary.last_stamp_ns;
     have = true;
   }
   out.topics.push_back(scans.finish());
@@ -118,30 +120,35 @@ void summarizeStreams(LogReader& reader, const std::string& scan_name, const std
   if (progress) progress(1.0, "reading log");
 }
 
-LogSummary summarizePcap(const std::string& path, const Config& config, const ProgressFn& progress) {
+LogSummary summarizePcap(const std::string& path, const InputConfig& input,
+                         const SensorConfig& sensor, const ProgressFn& progress) {
   LogSummary out;
   out.path = path;
   out.format = "Velodyne pcap";
   std::error_code ec;
   out.size_bytes = std::filesystem::file_size(path, ec);
-  VelodynePcapOptions options = velodynePcapOptions(config);
+  VelodynePcapOptions options = velodynePcapOptions(input, sensor);
   options.require_imu = false;
   VelodynePcapReader reader(path, options);
   const VelodyneProbe& probe = reader.probe();
-  out.properties.push_back({"sensor", std::string(velodyne::toString(probe.model)) +
-                                          (probe.model_from_product_id ? " (product id " : " (from the packet period; product id ") +
-                                          hexByte(probe.product) + ")"});
+  out.properties.push_back(
+      {"sensor", std::string(velodyne::toString(probe.model)) +
+                     (probe.model_from_product_id ? " (product id "
+                                                  : " (from the packet period; product id ") +
+                     hexByte(probe.product) + ")"});
   out.properties.push_back(
       {"return mode", velodyne::toString(static_cast<velodyne::ReturnMode>(probe.return_mode))});
-  summarizeStreams(reader, "scans (UDP " + std::to_string(options.data_port) + " data packets)",
-                   reader.imuSource() == "none" ? std::string() : "IMU (" + reader.imuSource() + ")",
-                   out, progress);
+  summarizeStreams(
+      reader, "scans (UDP " + std::to_string(options.data_port) + " data packets)",
+      reader.imuSource() == "none" ? std::string() : "IMU (" + reader.imuSource() + ")", out,
+      progress);
   out.properties.push_back({"rotation", fixed(reader.rotationHz(), 2) + " Hz (" +
                                             fixed(reader.rotationHz() * 60.0, 0) + " rpm)"});
   out.properties.push_back({"data packets", std::to_string(reader.dataPackets())});
   std::string ports;
   for (const auto& [port, count] : reader.datagramsByPort()) {
-    ports += (ports.empty() ? "" : ", ") + std::to_string(count) + " to port " + std::to_string(port);
+    ports +=
+        (ports.empty() ? "" : ", ") + std::to_string(count) + " to port " + std::to_string(port);
   }
   out.properties.push_back({"UDP datagrams", ports.empty() ? "none" : ports});
   out.properties.push_back({"IMU", reader.imuSource()});
@@ -150,14 +157,15 @@ LogSummary summarizePcap(const std::string& path, const Config& config, const Pr
   if (out.topics.front().count == 0) {
     out.input_problem = "no scan could be decoded";
   } else if (out.imu_topic.empty()) {
-    out.input_problem = path + ": no IMU: the capture holds no HDL-32E position packet with IMU "
+    out.input_problem = path +
+                        ": no IMU: the capture holds no HDL-32E position packet with IMU "
                         "values; give an IMU CSV (input.imu_csv, --imu-csv)";
   }
   return out;
 }
 
-LogSummary summarizePcdFolder(const std::string& path, const Config& config,
-                              const ProgressFn& progress) {
+LogSummary summarizePcdFolder(const std::string& path, const InputConfig& input,
+                              const SensorConfig& sensor, const ProgressFn& progress) {
   LogSummary out;
   out.path = path;
   out.format = "PCD folder";
@@ -169,18 +177,20 @@ LogSummary summarizePcdFolder(const std::string& path, const Config& config,
   const PcdHeader header = readPcdHeader(scans.front().path);
   std::string fields;
   for (const auto& f : header.fields) fields += (fields.empty() ? "" : " ") + f.name;
-  out.properties.push_back({"PCD files", std::to_string(scans.size()) + " (first: " +
-                                             std::filesystem::path(scans.front().path).filename().string() +
-                                             ", DATA " + header.data + ")"});
+  out.properties.push_back(
+      {"PCD files", std::to_string(scans.size()) + " (first: " +
+                        std::filesystem::path(scans.front().path).filename().string() + ", DATA " +
+                        header.data + ")"});
   out.properties.push_back({"fields", fields});
   out.properties.push_back(
       {"scan times", std::filesystem::exists(std::filesystem::path(path) / kPcdListFile)
                          ? std::string("from ") + kPcdListFile
                          : std::string("from the file names")});
-  const std::string csv = pcdFolderImuCsv(path, config.input);
+  const std::string csv = pcdFolderImuCsv(path, input);
   out.properties.push_back({"IMU", csv.empty() ? "none" : "IMU CSV " + csv});
-  auto reader = openPcdFolderLog(path, config, false);
-  summarizeStreams(*reader, "scans (PCD files)", csv.empty() ? "" : "IMU (" + csv + ")", out, progress);
+  auto reader = openPcdFolderLog(path, input, sensor, false);
+  summarizeStreams(*reader, "scans (PCD files)", csv.empty() ? "" : "IMU (" + csv + ")", out,
+                   progress);
   TopicSummary& t = out.topics.front();
   t.fields = header.fields;
   t.point_step = header.point_step;
@@ -188,7 +198,8 @@ LogSummary summarizePcdFolder(const std::string& path, const Config& config,
   out.imu_topic = csv;
   if (csv.empty()) {
     out.input_problem = path + ": no IMU: put the IMU CSV in the folder as " +
-                        std::string(kPcdFolderImuCsv) + " or give it with input.imu_csv (--imu-csv)";
+                        std::string(kPcdFolderImuCsv) +
+                        " or give it with input.imu_csv (--imu-csv)";
   }
   return out;
 }
@@ -204,22 +215,24 @@ double TopicSummary::rateHz() const {
   return count > 1 && duration > 0.0 ? static_cast<double>(count - 1) / duration : 0.0;
 }
 
-LogSummary summarizeLog(const std::string& path, const Config& config, const ProgressFn& progress) {
+LogSummary summarizeLog(const std::string& path, const InputConfig& input,
+                        const SensorConfig& sensor, const ProgressFn& progress) {
   switch (detectLogFormat(path)) {
-    case LogFormat::kVelodynePcap: return summarizePcap(path, config, progress);
-    case LogFormat::kPcdFolder: return summarizePcdFolder(path, config, progress);
-    case LogFormat::kRosbag1: break;
+    case LogFormat::kVelodynePcap:
+      return summarizePcap(path, input, sensor, progress);
+    case LogFormat::kPcdFolder:
+      return summarizePcdFolder(path, input, sensor, progress);
+    case LogFormat::kRosbag1:
+      break;
   }
-  return summarizeLog(path, config.input, progress);
+  return summarizeLog(path, input, progress);
 }
 
 LogSummary summarizeLog(const std::string& path, const InputConfig& input,
                         const ProgressFn& progress) {
   const LogFormat format = detectLogFormat(path);
   if (format != LogFormat::kRosbag1) {
-    Config config;
-    config.input = input;
-    return summarizeLog(path, config, progress);
+    return summarizeLog(path, input, SensorConfig{}, progress);
   }
   RosbagFile bag(path);
 

@@ -9,8 +9,9 @@
 #include <vector>
 
 #include "common/progress.h"
-#include "config/config.h"
+#include "io/input_config.h"
 #include "io/point_cloud_layout.h"
+#include "types/sensor.h"
 
 namespace storey {
 
@@ -63,7 +64,7 @@ LogSummary summarizeLog(const std::string& path, const InputConfig& input,
                         const ProgressFn& progress = {});
 /// The same with the whole configuration (sensor.lidar_model and
 /// time_offset_lidar_to_imu as a run would use them on a pcap or PCD folder).
-LogSummary summarizeLog(const std::string& path, const Config& config,
-                        const ProgressFn& progress = {});
+LogSummary summarizeLog(const std::string& path, const InputConfig& input,
+                        const SensorConfig& sensor, const ProgressFn& progress = {});
 
 }  // namespace storey

@@ -7,14 +7,15 @@
 
 namespace storey {
 
-std::unique_ptr<LogReader> openLog(const std::string& path, const Config& config) {
+std::unique_ptr<LogReader> openLog(const std::string& path, const InputConfig& input,
+                                   const SensorConfig& sensor) {
   switch (detectLogFormat(path)) {
     case LogFormat::kRosbag1:
-      return openRosbagLog(path, config);
+      return openRosbagLog(path, input, sensor);
     case LogFormat::kVelodynePcap:
-      return openVelodynePcapLog(path, config);
+      return openVelodynePcapLog(path, input, sensor);
     case LogFormat::kPcdFolder:
-      return openPcdFolderLog(path, config);
+      return openPcdFolderLog(path, input, sensor);
   }
   throw Error(path + ": unknown log format");
 }

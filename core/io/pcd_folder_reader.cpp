@@ -38,7 +38,8 @@ bool stampFromFileName(const std::string& file_name, std::int64_t& stamp_ns) {
   while (end > 0 && !std::isdigit(static_cast<unsigned char>(stem[end - 1]))) --end;
   if (end == 0) return false;
   std::size_t begin = end;
-  while (begin > 0 && (std::isdigit(static_cast<unsigned char>(stem[begin - 1])) || stem[begin - 1] == '.')) {
+  while (begin > 0 &&
+         (std::isdigit(static_cast<unsigned char>(stem[begin - 1])) || stem[begin - 1] == '.')) {
     --begin;
   }
   std::string number = stem.substr(begin, end - begin);
@@ -49,10 +50,14 @@ bool stampFromFileName(const std::string& file_name, std::int64_t& stamp_ns) {
   std::int64_t value = 0;
   if (digits > 19) return false;
   for (char c : number) value = value * 10 + (c - '0');
-  if (digits >= 18) stamp_ns = value;
-  else if (digits >= 15) stamp_ns = value * 1000;
-  else if (digits >= 12) stamp_ns = value * 1'000'000;
-  else stamp_ns = value * 1'000'000'000;
+  if (digits >= 18)
+    stamp_ns = value;
+  else if (digits >= 15)
+    stamp_ns = value * 1000;
+  else if (digits >= 12)
+    stamp_ns = value * 1'000'000;
+  else
+    stamp_ns = value * 1'000'000'000;
   return true;
 }
 
@@ -82,7 +87,8 @@ std::vector<PcdScanEntry> findPcdScans(const std::string& folder) {
       }
       entry.path = (fs::path(folder) / a).string();
       if (!fs::exists(entry.path)) {
-        throw Error(list.string() + ": line " + std::to_string(line_number) + ": no file " + entry.path);
+        throw Error(list.string() + ": line " + std::to_string(line_number) + ": no file " +
+                    entry.path);
       }
       scans.push_back(entry);
     }
@@ -94,8 +100,10 @@ std::vector<PcdScanEntry> findPcdScans(const std::string& folder) {
       PcdScanEntry entry;
       entry.path = item.path().string();
       if (!stampFromFileName(item.path().filename().string(), entry.stamp_ns)) {
-        throw Error(entry.path + ": no time in the file name; name the scans by their time "
-                    "(e.g. 1673400471.737763.pcd) or list them in " + list.string());
+        throw Error(entry.path +
+                    ": no time in the file name; name the scans by their time "
+                    "(e.g. 1673400471.737763.pcd) or list them in " +
+                    list.string());
       }
       scans.push_back(entry);
     }
@@ -114,13 +122,16 @@ std::vector<PcdScanEntry> findPcdScans(const std::string& folder) {
       std::sort(v.begin(), v.end());
       for (std::size_t i = 1; i < v.size(); ++i) consecutive = consecutive && v[i] == v[i - 1] + 1;
       if (consecutive) {
-        throw Error(folder + ": the PCD file names are scan numbers, not times; list the scans "
-                    "with their times in " + list.string() + " ('<file> <seconds>' per line)");
+        throw Error(folder +
+                    ": the PCD file names are scan numbers, not times; list the scans "
+                    "with their times in " +
+                    list.string() + " ('<file> <seconds>' per line)");
       }
     }
   }
-  std::stable_sort(scans.begin(), scans.end(),
-                   [](const PcdScanEntry& a, const PcdScanEntry& b) { return a.stamp_ns < b.stamp_ns; });
+  std::stable_sort(scans.begin(), scans.end(), [](const PcdScanEntry& a, const PcdScanEntry& b) {
+    return a.stamp_ns < b.stamp_ns;
+  });
   // The first file's content must be a PCD.
   readPcdHeader(scans.front().path);
   return scans;
@@ -136,16 +147,16 @@ namespace {
 
 class PcdFolderReader final : public LogReader {
  public:
-  PcdFolderReader(const std::string& folder, const Config& config, bool require_imu)
+  PcdFolderReader(const std::string& folder, const InputConfig& input, const SensorConfig& sensor,
+                  bool require_imu)
       : folder_(folder),
         scans_(findPcdScans(folder)),
-        clouds_("PCD folder", config.sensor.lidar_model,
-                PointFilter{config.input.min_range, config.input.max_range}),
-        sequencer_(sequencerOptions(config), stats_),
-        lidar_to_imu_ns_(secondsToNs(config.sensor.time_offset_lidar_to_imu)) {
-    const std::string csv = pcdFolderImuCsv(folder, config.input);
+        clouds_("PCD folder", sensor.lidar_model, PointFilter{input.min_range, input.max_range}),
+        sequencer_(sequencerOptions(sensor), stats_),
+        lidar_to_imu_ns_(secondsToNs(sensor.time_offset_lidar_to_imu)) {
+    const std::string csv = pcdFolderImuCsv(folder, input);
     if (!csv.empty()) {
-      csv_ = std::make_unique<ImuCsvReader>(csv, secondsToNs(config.input.imu_csv_time_offset));
+      csv_ = std::make_unique<ImuCsvReader>(csv, secondsToNs(input.imu_csv_time_offset));
     } else if (require_imu) {
       throw Error(folder + ": no IMU: put the IMU CSV in the folder as " + kPcdFolderImuCsv +
                   " or give it with input.imu_csv (--imu-csv)");
@@ -171,17 +182,18 @@ class PcdFolderReader final : public LogReader {
 
   const LogReadStats& stats() const override { return stats_; }
   std::string describe() const override {
-    return "PCD folder " + folder_ + " (" + std::to_string(scans_.size()) + " scans, IMU: " +
-           (csv_ ? csv_->path() : std::string("none")) + ")";
+    return "PCD folder " + folder_ + " (" + std::to_string(scans_.size()) +
+           " scans, IMU: " + (csv_ ? csv_->path() : std::string("none")) + ")";
   }
   double progress() const override {
-    return scans_.empty() ? 1.0 : static_cast<double>(next_scan_) / static_cast<double>(scans_.size());
+    return scans_.empty() ? 1.0
+                          : static_cast<double>(next_scan_) / static_cast<double>(scans_.size());
   }
 
  private:
-  static MessageSequencer::Options sequencerOptions(const Config& config) {
+  static MessageSequencer::Options sequencerOptions(const SensorConfig& sensor) {
     MessageSequencer::Options o;
-    o.lidar_to_imu_offset_ns = secondsToNs(config.sensor.time_offset_lidar_to_imu);
+    o.lidar_to_imu_offset_ns = secondsToNs(sensor.time_offset_lidar_to_imu);
     return o;
   }
 
@@ -231,9 +243,9 @@ class PcdFolderReader final : public LogReader {
 
 }  // namespace
 
-std::unique_ptr<LogReader> openPcdFolderLog(const std::string& folder, const Config& config,
-                                            bool require_imu) {
-  return std::make_unique<PcdFolderReader>(folder, config, require_imu);
+std::unique_ptr<LogReader> openPcdFolderLog(const std::string& folder, const InputConfig& input,
+                                            const SensorConfig& sensor, bool require_imu) {
+  return std::make_unique<PcdFolderReader>(folder, input, sensor, require_imu);
 }
 
 }  // namespace storey

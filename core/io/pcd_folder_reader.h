@@ -10,8 +10,9 @@
 #include <string>
 #include <vector>
 
-#include "config/config.h"
+#include "io/input_config.h"
 #include "io/log_reader.h"
+#include "types/sensor.h"
 
 namespace storey {
 
@@ -40,7 +41,7 @@ std::string pcdFolderImuCsv(const std::string& folder, const InputConfig& input)
 
 /// Opens the folder as a LogReader. `require_imu` false allows a folder
 /// without IMU (scans only, e.g. for summaries).
-std::unique_ptr<LogReader> openPcdFolderLog(const std::string& folder, const Config& config,
-                                            bool require_imu = true);
+std::unique_ptr<LogReader> openPcdFolderLog(const std::string& folder, const InputConfig& input,
+                                            const SensorConfig& sensor, bool require_imu = true);
 
 }  // namespace storey

@@ -8,10 +8,10 @@
 #include <string>
 #include <vector>
 
-#include "config/config.h"
 #include "io/point_cloud_decoder.h"
 #include "io/point_cloud_layout.h"
 #include "types/scan.h"
+#include "types/sensor.h"
 
 namespace storey {
 

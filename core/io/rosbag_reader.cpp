@@ -22,13 +22,13 @@ constexpr double kClockMismatchS = 1.0;
 
 class RosbagReader final : public LogReader {
  public:
-  RosbagReader(const std::string& path, const Config& config)
+  RosbagReader(const std::string& path, const InputConfig& input, const SensorConfig& sensor)
       : bag_(path),
-        topics_(chooseTopics(bag_.topics(), config.input, path)),
-        clouds_(topics_.points_topic, config.sensor.lidar_model,
-                PointFilter{config.input.min_range, config.input.max_range}),
-        sequencer_(sequencerOptions(config), stats_),
-        offset_ns_(secondsToNs(config.sensor.time_offset_lidar_to_imu)) {
+        topics_(chooseTopics(bag_.topics(), input, path)),
+        clouds_(topics_.points_topic, sensor.lidar_model,
+                PointFilter{input.min_range, input.max_range}),
+        sequencer_(sequencerOptions(sensor), stats_),
+        offset_ns_(secondsToNs(sensor.time_offset_lidar_to_imu)) {
     bag_.select({topics_.points_topic, topics_.imu_topic});
   }
 
@@ -59,9 +59,9 @@ class RosbagReader final : public LogReader {
   }
 
  private:
-  static MessageSequencer::Options sequencerOptions(const Config& config) {
+  static MessageSequencer::Options sequencerOptions(const SensorConfig& sensor) {
     MessageSequencer::Options options;
-    options.lidar_to_imu_offset_ns = secondsToNs(config.sensor.time_offset_lidar_to_imu);
+    options.lidar_to_imu_offset_ns = secondsToNs(sensor.time_offset_lidar_to_imu);
     return options;
   }
 
@@ -130,8 +130,9 @@ class RosbagReader final : public LogReader {
 
 }  // namespace
 
-std::unique_ptr<LogReader> openRosbagLog(const std::string& path, const Config& config) {
-  return std::make_unique<RosbagReader>(path, config);
+std::unique_ptr<LogReader> openRosbagLog(const std::string& path, const InputConfig& input,
+                                         const SensorConfig& sensor) {
+  return std::make_unique<RosbagReader>(path, input, sensor);
 }
 
 }  // namespace storey

@@ -5,7 +5,8 @@
 #include <string>
 #include <vector>
 
-#include "config/config.h"
+#include "io/input_config.h"
+#include "types/sensor.h"
 
 namespace storey {
 

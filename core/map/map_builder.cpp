@@ -20,7 +20,9 @@ void MapCloud::reserve(std::size_t n) {
   flags.reserve(n);
 }
 
-void MapCloud::clear() { *this = MapCloud(); }
+void MapCloud::clear() {
+  *this = MapCloud();
+}
 
 void MapCloud::pushFrom(const MapCloud& other, std::size_t i) {
   positions.push_back(other.positions[i]);
@@ -53,7 +55,7 @@ MapBuilder::MapBuilder(const MapConfig& config) : config_(config) {
     // Anonymous: removed by the system when closed, also after a crash.
     file_ = std::tmpfile();
     if (!file_)
-      throw Error(std::string("map: cannot create a temporary file for the keyframe scans (") +
+      throw Error(std::string("map: cannot create a temporary file for the map scans (") +
                   std::strerror(errno) + "); set map.spill_to_disk: false to keep them in RAM");
   }
 }
@@ -62,19 +64,19 @@ MapBuilder::~MapBuilder() {
   if (file_) std::fclose(file_);
 }
 
-std::vector<int> MapBuilder::keyframes() const {
+std::vector<int> MapBuilder::mapScans() const {
   std::vector<int> out;
   out.reserve(entries_.size());
-  for (const Entry& e : entries_) out.push_back(e.keyframe);
+  for (const Entry& e : entries_) out.push_back(e.map_scan);
   return out;
 }
 
-void MapBuilder::addKeyframeScan(int keyframe, const Scan& scan, int label) {
-  if (keyframe < 0) throw Error("map: keyframe index must be >= 0, got " + std::to_string(keyframe));
-  if (static_cast<std::size_t>(keyframe) >= entry_of_keyframe_.size())
-    entry_of_keyframe_.resize(static_cast<std::size_t>(keyframe) + 1, -1);
-  if (entry_of_keyframe_[static_cast<std::size_t>(keyframe)] >= 0)
-    throw Error("map: keyframe " + std::to_string(keyframe) + " was added twice");
+void MapBuilder::addScan(int map_scan, const Scan& scan, int keyframe) {
+  if (map_scan < 0) throw Error("map: scan index must be >= 0, got " + std::to_string(map_scan));
+  if (static_cast<std::size_t>(map_scan) >= entry_of_scan_.size())
+    entry_of_scan_.resize(static_cast<std::size_t>(map_scan) + 1, -1);
+  if (entry_of_scan_[static_cast<std::size_t>(map_scan)] >= 0)
+    throw Error("map: scan " + std::to_string(map_scan) + " was added twice");
 
   // Downsample in the LiDAR frame: centroid of each voxel, mean intensity,
   // time of the voxel's first point (the same rule as the map's merge).
@@ -122,22 +124,22 @@ void MapBuilder::addKeyframeScan(int keyframe, const Scan& scan, int label) {
   }
 
   Entry entry;
-  entry.keyframe = keyframe;
-  entry.label = label >= 0 ? label : keyframe;
+  entry.map_scan = map_scan;
+  entry.keyframe = keyframe >= 0 ? keyframe : map_scan;
   entry.stamp_ns = scan.stamp_ns;
   entry.offset = stored_points_;
   entry.count = points.size();
   if (file_) {
     if (!points.empty() &&
         std::fwrite(points.data(), sizeof(StoredPoint), points.size(), file_) != points.size())
-      throw Error("map: cannot write the keyframe scans' temporary file (disk full?)");
+      throw Error("map: cannot write the map scans' temporary file (disk full?)");
   } else {
     memory_.insert(memory_.end(), points.begin(), points.end());
   }
   stored_points_ += points.size();
-  entry_of_keyframe_[static_cast<std::size_t>(keyframe)] = static_cast<int>(entries_.size());
+  entry_of_scan_[static_cast<std::size_t>(map_scan)] = static_cast<int>(entries_.size());
   entries_.push_back(entry);
-  ++stats_.keyframes;
+  ++stats_.scans;
   stats_.points_stored = static_cast<std::int64_t>(stored_points_);
   stats_.stored_bytes = static_cast<std::int64_t>(stored_points_ * sizeof(StoredPoint));
 }
@@ -147,23 +149,24 @@ void MapBuilder::readPoints(const Entry& entry, std::vector<StoredPoint>& out) c
   if (entry.count == 0) return;
   if (!file_) {
     std::copy(memory_.begin() + static_cast<std::ptrdiff_t>(entry.offset),
-              memory_.begin() + static_cast<std::ptrdiff_t>(entry.offset + entry.count), out.begin());
+              memory_.begin() + static_cast<std::ptrdiff_t>(entry.offset + entry.count),
+              out.begin());
     return;
   }
   if (std::fflush(file_) != 0 ||
       std::fseek(file_, static_cast<long>(entry.offset * sizeof(StoredPoint)), SEEK_SET) != 0 ||
       std::fread(out.data(), sizeof(StoredPoint), entry.count, file_) != entry.count)
-    throw Error("map: cannot read back the keyframe scans' temporary file");
+    throw Error("map: cannot read back the map scans' temporary file");
   // Appends continue at the end.
   std::fseek(file_, 0, SEEK_END);
 }
 
-MapCloud MapBuilder::build(const std::vector<Pose>& T_world_lidar_per_keyframe,
+MapCloud MapBuilder::build(const std::vector<Pose>& T_world_lidar_per_scan,
                            const ProgressFn& progress) const {
   for (const Entry& e : entries_) {
-    if (static_cast<std::size_t>(e.keyframe) >= T_world_lidar_per_keyframe.size())
-      throw Error("map: keyframe " + std::to_string(e.keyframe) + " has no pose (" +
-                  std::to_string(T_world_lidar_per_keyframe.size()) + " poses given)");
+    if (static_cast<std::size_t>(e.map_scan) >= T_world_lidar_per_scan.size())
+      throw Error("map: scan " + std::to_string(e.map_scan) + " has no pose (" +
+                  std::to_string(T_world_lidar_per_scan.size()) + " poses given)");
   }
   const double inv = 1.0 / config_.voxel_size;
   // Voxel accumulators: sums relative to the voxel's corner (small numbers,
@@ -181,7 +184,7 @@ MapCloud MapBuilder::build(const std::vector<Pose>& T_world_lidar_per_keyframe,
   for (std::size_t e = 0; e < entries_.size(); ++e) {
     const Entry& entry = entries_[e];
     readPoints(entry, points);
-    const Pose& T = T_world_lidar_per_keyframe[static_cast<std::size_t>(entry.keyframe)];
+    const Pose& T = T_world_lidar_per_scan[static_cast<std::size_t>(entry.map_scan)];
     const Eigen::Matrix3d R = T.rotationMatrix();
     const Eigen::Vector3d t = T.translation();
     const double stamp = nsToSeconds(entry.stamp_ns);
@@ -189,14 +192,14 @@ MapCloud MapBuilder::build(const std::vector<Pose>& T_world_lidar_per_keyframe,
       const Eigen::Vector3d p = R * Eigen::Vector3d(sp.x, sp.y, sp.z) + t;
       const Eigen::Vector3d cell(std::floor(p.x() * inv), std::floor(p.y() * inv),
                                  std::floor(p.z() * inv));
-      const std::uint64_t key = packVoxel(static_cast<std::int64_t>(cell.x()),
-                                          static_cast<std::int64_t>(cell.y()),
-                                          static_cast<std::int64_t>(cell.z()));
+      const std::uint64_t key =
+          packVoxel(static_cast<std::int64_t>(cell.x()), static_cast<std::int64_t>(cell.y()),
+                    static_cast<std::int64_t>(cell.z()));
       const Eigen::Vector3f local = (p - cell * config_.voxel_size).cast<float>();
       bool inserted = false;
       const std::uint32_t v = index.findOrInsert(key, inserted);
       if (inserted) {
-        acc.push_back({local.x(), local.y(), local.z(), sp.intensity, 1, entry.label,
+        acc.push_back({local.x(), local.y(), local.z(), sp.intensity, 1, entry.keyframe,
                        stamp + static_cast<double>(sp.dt)});
         keys.push_back(key);
       } else {

@@ -1,6 +1,7 @@
 #pragma once
-/// Map assembly: the deskewed keyframe scans, placed at their final
-/// (optimised) poses, merged and voxel-downsampled into one MapCloud.
+/// Map assembly: the deskewed map scans (the keyframes and the scans between
+/// them that map_scan_selector.h picks), placed at their final (optimised)
+/// poses, merged and voxel-downsampled into one MapCloud.
 ///
 /// Memory: each scan is downsampled in its own frame on arrival (same voxel
 /// size as the map; points beyond MapConfig::max_range dropped) and stored
@@ -28,12 +29,12 @@ namespace storey {
 
 /// What the builder holds and what build() made of it.
 struct MapBuildStats {
-  std::int64_t keyframes = 0;        ///< scans added
-  std::int64_t points_in = 0;        ///< points of the added scans
+  std::int64_t scans = 0;                ///< scans added
+  std::int64_t points_in = 0;            ///< points of the added scans
   std::int64_t points_beyond_range = 0;  ///< left out: farther than max_range
   std::int64_t points_non_finite = 0;    ///< left out: NaN/inf coordinates
-  std::int64_t points_stored = 0;    ///< after the per-scan downsampling
-  std::int64_t stored_bytes = 0;     ///< size of the scan store (file or RAM) [bytes]
+  std::int64_t points_stored = 0;        ///< after the per-scan downsampling
+  std::int64_t stored_bytes = 0;         ///< size of the scan store (file or RAM) [bytes]
 };
 
 class MapBuilder {
@@ -45,26 +46,26 @@ class MapBuilder {
   MapBuilder(const MapBuilder&) = delete;
   MapBuilder& operator=(const MapBuilder&) = delete;
 
-  /// Adds the deskewed scan of keyframe `keyframe` (>= 0; LiDAR frame at the
+  /// Adds map scan number `map_scan` (>= 0; deskewed, LiDAR frame at the
   /// scan's reference time, per-point time relative to scan.stamp_ns). Each
-  /// keyframe index may be added once; indices need not be contiguous.
-  /// `label` (default: `keyframe`) is what build() puts in MapCloud::keyframe
-  /// for the points of this scan (the pipeline: the graph keyframe whose part
-  /// of the walk the scan belongs to).
-  void addKeyframeScan(int keyframe, const Scan& deskewed_lidar, int label = -1);
+  /// index may be added once; indices need not be contiguous. `keyframe`
+  /// (default: `map_scan`) is what build() puts in MapCloud::keyframe for the
+  /// points of this scan (the pipeline: the graph keyframe whose part of the
+  /// walk the scan belongs to).
+  void addScan(int map_scan, const Scan& deskewed_lidar, int keyframe = -1);
 
-  /// Places every keyframe scan at T_world_lidar_per_keyframe[keyframe] and
-  /// merges them into voxels of MapConfig::voxel_size (position and intensity
-  /// averaged; time and keyframe label of the voxel's first return). Storeys are
+  /// Places every map scan at T_world_lidar_per_scan[map_scan] and merges
+  /// them into voxels of MapConfig::voxel_size (position and intensity
+  /// averaged; time and keyframe of the voxel's first return). Storeys are
   /// kNoStorey and flags 0 (the storey stage labels them). Throws
-  /// storey::Error when a keyframe has no pose. Can be called again with other poses.
-  MapCloud build(const std::vector<Pose>& T_world_lidar_per_keyframe,
+  /// storey::Error when a scan has no pose. Can be called again with other poses.
+  MapCloud build(const std::vector<Pose>& T_world_lidar_per_scan,
                  const ProgressFn& progress = {}) const;
 
   const MapBuildStats& stats() const { return stats_; }
   const MapConfig& config() const { return config_; }
-  /// Keyframe indices in the order they were added.
-  std::vector<int> keyframes() const;
+  /// Map scan indices in the order they were added.
+  std::vector<int> mapScans() const;
 
  private:
   struct StoredPoint {
@@ -73,8 +74,8 @@ class MapBuilder {
     float dt;  ///< time relative to the scan stamp [s]
   };
   struct Entry {
-    int keyframe = 0;
-    int label = 0;  ///< MapCloud::keyframe of its points
+    int map_scan = 0;
+    int keyframe = 0;  ///< MapCloud::keyframe of its points
     std::int64_t stamp_ns = 0;
     std::uint64_t offset = 0;  ///< into the store, in points
     std::uint64_t count = 0;
@@ -84,9 +85,9 @@ class MapBuilder {
   MapConfig config_;
   MapBuildStats stats_;
   std::vector<Entry> entries_;
-  std::vector<int> entry_of_keyframe_;  ///< -1: not added
-  std::FILE* file_ = nullptr;            ///< spill_to_disk
-  std::vector<StoredPoint> memory_;      ///< !spill_to_disk
+  std::vector<int> entry_of_scan_;   ///< per map scan index; -1: not added
+  std::FILE* file_ = nullptr;        ///< spill_to_disk
+  std::vector<StoredPoint> memory_;  ///< !spill_to_disk
   std::uint64_t stored_points_ = 0;
 };
 

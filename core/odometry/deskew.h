@@ -5,9 +5,9 @@
 /// A point x measured at time t = stamp + time_offset + tau (IMU clock) is
 ///   x_ref = T_lidar_imu * T_world_imu(t_ref)^-1 * T_world_imu(t) * T_imu_lidar * x
 /// with t_ref = stamp + time_offset, so only the motion inside the scan matters.
-#include "config/config.h"
 #include "imu/imu_pose_table.h"
 #include "types/scan.h"
+#include "types/sensor.h"
 
 namespace storey {
 

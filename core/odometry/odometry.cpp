@@ -31,7 +31,7 @@ struct LidarInertialOdometry::Frame {
   MatchResult matches;
   Scan deskewed;
   OdometryScanStats stats;
-  bool in_map = false;  // features inserted into the local map
+  bool in_map = false;       // features inserted into the local map
   MotionPrior motion_prior;  // used while this frame is the window's oldest
 
   ImuState state() const { return blocks.toState(state_ns); }
@@ -74,12 +74,13 @@ Eigen::Vector3d marginalEigenvalues(const Eigen::Matrix<double, 6, 6>& H, int a)
 
 }  // namespace
 
-LidarInertialOdometry::LidarInertialOdometry(const Config& config, Sink sink)
+LidarInertialOdometry::LidarInertialOdometry(const OdometryConfig& config,
+                                             const SensorConfig& sensor)
     : config_(config),
-      sink_(std::move(sink)),
-      time_offset_ns_(secondsToNs(config.sensor.time_offset_lidar_to_imu)),
-      plane_map_(config.odometry.local_map),
-      edge_map_(config.odometry.local_map) {}
+      sensor_(sensor),
+      time_offset_ns_(secondsToNs(sensor.time_offset_lidar_to_imu)),
+      plane_map_(config.local_map),
+      edge_map_(config.local_map) {}
 
 LidarInertialOdometry::~LidarInertialOdometry() = default;
 
@@ -102,13 +103,15 @@ void LidarInertialOdometry::finish() {
   }
 }
 
-void LidarInertialOdometry::applyCorrection(const Pose& T_corrected_old) {
-  T_output_corrected_ = T_corrected_old * T_output_corrected_;
+bool LidarInertialOdometry::nextResult(OdometryResult& result) {
+  if (results_.empty()) return false;
+  result = std::move(results_.front());
+  results_.pop_front();
+  return true;
 }
 
 void LidarInertialOdometry::initialise() {
-  const ImuInitResult init =
-      initializeImuFromStill(imu_, config_.sensor.imu, config_.odometry.imu_init);
+  const ImuInitResult init = initializeImuFromStill(imu_, sensor_.imu, config_.imu_init);
   initial_state_ = init.state;
   initialised_ = true;
   std::ostringstream os;
@@ -124,7 +127,7 @@ void LidarInertialOdometry::tryProcess(bool at_end) {
       return;
     }
     const double span = nsToSeconds(imu_.back().stamp_ns - imu_.front().stamp_ns);
-    if (span < config_.odometry.imu_init.still_window && !at_end) return;
+    if (span < config_.imu_init.still_window && !at_end) return;
     initialise();  // throws with an explanation when the start is not still or too short
   }
   while (!pending_.empty()) {
@@ -156,16 +159,16 @@ void LidarInertialOdometry::trimImu() {
   // Keep everything from one second before the newest state (the next
   // preintegration starts there and needs a sample at or before it).
   const std::int64_t keep_from = window_.back()->state_ns - 1'000'000'000;
-  const auto first_kept = std::lower_bound(
-      imu_.begin(), imu_.end(), keep_from,
-      [](const ImuSample& s, std::int64_t t) { return s.stamp_ns < t; });
+  const auto first_kept =
+      std::lower_bound(imu_.begin(), imu_.end(), keep_from,
+                       [](const ImuSample& s, std::int64_t t) { return s.stamp_ns < t; });
   if (first_kept - imu_.begin() > 1) imu_.erase(imu_.begin(), first_kept - 1);
 }
 
 void LidarInertialOdometry::processScan(const Scan& scan) {
   const auto start = Clock::now();
-  const OdometryConfig& cfg = config_.odometry;
-  const double gravity = config_.sensor.imu.gravity;
+  const OdometryConfig& cfg = config_;
+  const double gravity = sensor_.imu.gravity;
   auto frame = std::make_unique<Frame>();
   frame->scan_stamp_ns = scan.stamp_ns;
   frame->state_ns = scan.stamp_ns + time_offset_ns_;
@@ -182,7 +185,7 @@ void LidarInertialOdometry::processScan(const Scan& scan) {
       previous.stamp_ns = frame->state_ns;
     } else {
       const ImuPreintegration from_init = ImuPreintegration::fromSamples(
-          imu_, initial_state_.stamp_ns, frame->state_ns, initial_state_.bias, config_.sensor.imu);
+          imu_, initial_state_.stamp_ns, frame->state_ns, initial_state_.bias, sensor_.imu);
       previous = from_init.predict(initial_state_);
       previous.stamp_ns = frame->state_ns;
     }
@@ -190,13 +193,15 @@ void LidarInertialOdometry::processScan(const Scan& scan) {
       // World frame: gravity-aligned (from the IMU initialisation), origin at
       // the LiDAR's start position, yaw such that the LiDAR's x axis points
       // along world +x (whatever the IMU's mounting), unless it is vertical.
-      const Pose& T_imu_lidar = config_.sensor.T_imu_lidar;
+      const Pose& T_imu_lidar = sensor_.T_imu_lidar;
       Eigen::Quaterniond q_world_imu = previous.T_world_imu.rotation();
-      const Eigen::Vector3d lidar_x_world = q_world_imu * (T_imu_lidar.rotation() * Eigen::Vector3d::UnitX());
+      const Eigen::Vector3d lidar_x_world =
+          q_world_imu * (T_imu_lidar.rotation() * Eigen::Vector3d::UnitX());
       if (lidar_x_world.head<2>().norm() > 0.1) {
         const double yaw = std::atan2(lidar_x_world.y(), lidar_x_world.x());
         q_world_imu = Eigen::AngleAxisd(-yaw, Eigen::Vector3d::UnitZ()) * q_world_imu;
-        previous.v_world_imu = Eigen::AngleAxisd(-yaw, Eigen::Vector3d::UnitZ()) * previous.v_world_imu;
+        previous.v_world_imu =
+            Eigen::AngleAxisd(-yaw, Eigen::Vector3d::UnitZ()) * previous.v_world_imu;
       }
       previous.T_world_imu = Pose(q_world_imu, -(q_world_imu * T_imu_lidar.translation()));
       origin_set_ = true;
@@ -219,7 +224,7 @@ void LidarInertialOdometry::processScan(const Scan& scan) {
       logWarning(os.str());
     }
     frame->from_previous = std::make_unique<ImuPreintegration>(ImuPreintegration::fromSamples(
-        imu_, last.state_ns, frame->state_ns, previous.bias, config_.sensor.imu));
+        imu_, last.state_ns, frame->state_ns, previous.bias, sensor_.imu));
     ImuState predicted = frame->from_previous->predict(previous);
     predicted.stamp_ns = frame->state_ns;
     frame->blocks = ImuStateBlocks::fromState(predicted);
@@ -229,14 +234,14 @@ void LidarInertialOdometry::processScan(const Scan& scan) {
   // 2. Deskew with the IMU-propagated motion.
   t = Clock::now();
   const ImuPoseTable table = ImuPoseTable::fromSamples(previous, imu_, table_end_ns, gravity);
-  frame->deskewed = deskewScan(scan, table, config_.sensor);
+  frame->deskewed = deskewScan(scan, table, sensor_);
   frame->stats.ms_deskew = msSince(t);
 
   // 3. Features.
   t = Clock::now();
   const FeatureSet features = extractFeatures(frame->deskewed, cfg.features);
-  frame->planes_imu = toImuFrame(features.planes, config_.sensor.T_imu_lidar);
-  frame->edges_imu = toImuFrame(features.edges, config_.sensor.T_imu_lidar);
+  frame->planes_imu = toImuFrame(features.planes, sensor_.T_imu_lidar);
+  frame->edges_imu = toImuFrame(features.edges, sensor_.T_imu_lidar);
   frame->stats.plane_features = static_cast<std::int64_t>(features.planes.size());
   frame->stats.edge_features = static_cast<std::int64_t>(features.edges.size());
   frame->stats.feature_rejects = features.rejected;
@@ -251,12 +256,12 @@ void LidarInertialOdometry::processScan(const Scan& scan) {
 }
 
 void LidarInertialOdometry::optimise(Frame& newest) {
-  const OdometryConfig& cfg = config_.odometry;
+  const OdometryConfig& cfg = config_;
   for (int round = 0; round < std::max(cfg.matching_rounds, 1); ++round) {
     auto t = Clock::now();
     newest.matches = matchFeatures(newest.planes_imu, newest.edges_imu,
                                    newest.blocks.toState(newest.state_ns).T_world_imu, plane_map_,
-                                   edge_map_, cfg, config_.sensor.T_imu_lidar.translation());
+                                   edge_map_, cfg, sensor_.T_imu_lidar.translation());
     newest.stats.ms_matching += msSince(t);
 
     t = Clock::now();
@@ -330,7 +335,7 @@ void LidarInertialOdometry::slide() {
   Frame& oldest = *window_.front();
   if (!oldest.in_map) {
     const Pose T_world_imu = oldest.state().T_world_imu;
-    const Eigen::Vector3d lidar_world = T_world_imu * config_.sensor.T_imu_lidar.translation();
+    const Eigen::Vector3d lidar_world = T_world_imu * sensor_.T_imu_lidar.translation();
     plane_map_.insert(toWorld(oldest.planes_imu, T_world_imu), lidar_world);
     edge_map_.insert(toWorld(oldest.edges_imu, T_world_imu));
     // Dropping far voxels walks the whole map: once per metre travelled is enough.
@@ -344,34 +349,29 @@ void LidarInertialOdometry::slide() {
   }
   if (window_.size() == 1) return;  // the first frame stays as the window's fixed anchor
   Frame& next = *window_[1];
-  next.motion_prior = propagateMotionPrior(oldest.motion_prior,
-                                           ImuGravityFactor(*next.from_previous),
-                                           oldest.blocks.pose, oldest.blocks.motion,
-                                           next.blocks.pose, next.blocks.motion, tilt_,
-                                           config_.odometry.pose_sigma_translation,
-                                           config_.odometry.pose_sigma_rotation);
+  next.motion_prior = propagateMotionPrior(
+      oldest.motion_prior, ImuGravityFactor(*next.from_previous), oldest.blocks.pose,
+      oldest.blocks.motion, next.blocks.pose, next.blocks.motion, tilt_,
+      config_.pose_sigma_translation, config_.pose_sigma_rotation);
   emit(oldest);
   window_.pop_front();
 }
 
 void LidarInertialOdometry::emit(Frame& frame) {
-  if (!sink_) return;
   OdometryResult result;
   result.scan_stamp_ns = frame.scan_stamp_ns;
   result.state = frame.state();
   // Output frame: the map frame levelled by the estimated gravity direction
-  // (g_map = Exp([t, 0]) g, so Exp(-[t, 0]) maps it to (0, 0, -|g|)), then the
-  // back end's corrections.
-  const Pose T_output_map =
-      T_output_corrected_ *
-      Pose(Eigen::Quaterniond(so3::expMatrix(-Eigen::Vector3d(tilt_[0], tilt_[1], 0.0))),
-           Eigen::Vector3d::Zero());
+  // (g_map = Exp([t, 0]) g, so Exp(-[t, 0]) maps it to (0, 0, -|g|)).
+  const Pose T_output_map(
+      Eigen::Quaterniond(so3::expMatrix(-Eigen::Vector3d(tilt_[0], tilt_[1], 0.0))),
+      Eigen::Vector3d::Zero());
   result.state.T_world_imu = T_output_map * result.state.T_world_imu;
   result.state.v_world_imu = T_output_map.rotation() * result.state.v_world_imu;
-  result.T_world_lidar = result.state.T_world_imu * config_.sensor.T_imu_lidar;
+  result.T_world_lidar = result.state.T_world_imu * sensor_.T_imu_lidar;
   result.deskewed = std::move(frame.deskewed);
   result.stats = frame.stats;
-  sink_(std::move(result));
+  results_.push_back(std::move(result));
 }
 
 }  // namespace storey

@@ -9,15 +9,14 @@
 /// sliding window (pose, velocity, biases; the oldest held fixed) are solved
 /// jointly with Ceres from the IMU factors between them and the LiDAR
 /// residuals of their scans, robust and covariance-weighted. A scan leaves the
-/// window with its final estimate: its features enter the local map and it is
-/// handed to the sink.
+/// window with its final estimate: its features enter the local map and its
+/// result is queued for nextResult(). The odometry knows nothing of the
+/// stages after it (data flow one way: odometry -> back end).
 #include <cstdint>
 #include <deque>
-#include <functional>
 #include <memory>
 #include <vector>
 
-#include "config/config.h"
 #include "imu/imu_preintegration.h"
 #include "imu/imu_state.h"
 #include "imu/imu_state_blocks.h"
@@ -27,6 +26,7 @@
 #include "types/imu_sample.h"
 #include "types/pose.h"
 #include "types/scan.h"
+#include "types/sensor.h"
 
 namespace storey {
 
@@ -66,10 +66,7 @@ struct OdometryDrops {
 
 class LidarInertialOdometry {
  public:
-  using Sink = std::function<void(OdometryResult&&)>;
-
-  /// `sink` receives every scan's final result, in time order.
-  LidarInertialOdometry(const Config& config, Sink sink);
+  LidarInertialOdometry(const OdometryConfig& config, const SensorConfig& sensor);
   ~LidarInertialOdometry();
 
   /// Feed the log in time order (IMU samples by stamp, scans by stamp +
@@ -78,14 +75,10 @@ class LidarInertialOdometry {
   void addScan(Scan scan);
   /// End of the log: processes what the IMU covers and flushes the window.
   void finish();
-  /// Moves the odometry into a corrected world frame: results emitted
-  /// afterwards (every state still in the window and every later one) are
-  /// mapped by T_corrected_old (x_corrected = T_corrected_old * x_old), so the
-  /// odometry continues from the corrected state. The local map and the
-  /// window keep their own (map) frame, in which gravity's direction is
-  /// estimated; the correction is composed with the output transform. The
-  /// back end calls this after a graph optimisation.
-  void applyCorrection(const Pose& T_corrected_old);
+  /// The oldest final result not taken yet (scans in time order, each once
+  /// it left the window); false when there is none. Call after each add*()
+  /// and after finish() until it returns false: results wait in a queue.
+  bool nextResult(OdometryResult& result);
 
   const OdometryDrops& drops() const { return drops_; }
   bool initialised() const { return initialised_; }
@@ -98,11 +91,12 @@ class LidarInertialOdometry {
   void processScan(const Scan& scan);
   void optimise(Frame& newest);
   void slide();
-  void emit(Frame& frame);
+  void emit(Frame& frame);  ///< queues the frame's final result
   void trimImu();
 
-  Config config_;
-  Sink sink_;
+  OdometryConfig config_;
+  SensorConfig sensor_;
+  std::deque<OdometryResult> results_;  ///< final results not taken yet
   std::int64_t time_offset_ns_ = 0;
   std::vector<ImuSample> imu_;
   std::deque<Scan> pending_;
@@ -115,8 +109,6 @@ class LidarInertialOdometry {
   Eigen::Vector3d last_map_trim_position_ = Eigen::Vector3d::Zero();
   /// Tilt of gravity in the map frame (ImuGravityFactor): g = Exp([t, 0]) (0, 0, -|g|).
   double tilt_[2] = {0.0, 0.0};
-  /// Back-end corrections (applyCorrection), applied to the levelled output.
-  Pose T_output_corrected_;
   OdometryDrops drops_;
 };
 

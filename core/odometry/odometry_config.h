@@ -13,16 +13,16 @@ struct OdometryConfig {
   ImuInitConfig imu_init;
   ImuPreintegrationConfig preintegration;
 
-  int window_size = 3;             ///< states optimised together (oldest held fixed) [>= 2]
-  int matching_rounds = 2;         ///< feature association rounds per scan [>= 1]
-  int max_iterations = 4;          ///< Ceres iterations per round [>= 1]
-  int neighbours = 8;              ///< map points used to fit a plane or a line [>= 3]
-                                   ///< (5 fitted false planes across stair steps: odometry.md)
+  int window_size = 3;                  ///< states optimised together (oldest held fixed) [>= 2]
+  int matching_rounds = 2;              ///< feature association rounds per scan [>= 1]
+  int max_iterations = 4;               ///< Ceres iterations per round [>= 1]
+  int neighbours = 8;                   ///< map points used to fit a plane or a line [>= 3]
+                                        ///< (5 fitted false planes across stair steps: odometry.md)
   double max_neighbour_distance = 0.5;  ///< farthest map neighbour of a feature [m]
   double plane_fit_tolerance = 0.05;    ///< every neighbour within this of its plane [m]
-  double line_eigen_ratio = 3.0;        ///< a line's neighbours: largest eigenvalue > ratio x second [-]
-  double max_point_distance = 1.0;      ///< matches farther than this from their plane/line
-                                        ///< at the predicted pose are rejected [m]
+  double line_eigen_ratio = 3.0;  ///< a line's neighbours: largest eigenvalue > ratio x second [-]
+  double max_point_distance = 1.0;  ///< matches farther than this from their plane/line
+                                    ///< at the predicted pose are rejected [m]
   double point_sigma = 0.03;       ///< uncertainty of a feature point and its fitted plane/line [m]
                                    ///< (a VLP-16-class LiDAR's range accuracy)
   double huber_threshold = 1.345;  ///< robust (Huber) loss on the whitened residual |r| / sigma:
@@ -30,13 +30,16 @@ struct OdometryConfig {
   double degenerate_translation_std = 0.02;  ///< LiDAR-only std above which a direction is
                                              ///< reported degenerate [m]
   double degenerate_rotation_std = 0.005;    ///< same for rotations [rad]
-  double prior_velocity_sigma = 0.01;     ///< initial velocity uncertainty (still start) [m/s]
-  double prior_gyro_bias_sigma = 1e-3;    ///< initial gyro bias uncertainty [rad/s]
-  double prior_accel_bias_sigma = 0.05;   ///< initial accel bias uncertainty [m/s^2]
-  double pose_sigma_translation = 0.02;   ///< accuracy of a registered pose, used when the
-                                          ///< oldest state leaves the window [m]
-  double pose_sigma_rotation = 0.005;     ///< same for its rotation [rad]
-  double max_scan_gap = 0.5;       ///< a longer time between scans is an error [s]
+  double prior_velocity_sigma = 0.01;        ///< initial velocity uncertainty (still start) [m/s]
+  double prior_gyro_bias_sigma = 1e-3;       ///< initial gyro bias uncertainty [rad/s]
+  double prior_accel_bias_sigma = 0.05;      ///< initial accel bias uncertainty [m/s^2]
+  double pose_sigma_translation = 0.02;      ///< accuracy of a registered pose, used when the
+                                             ///< oldest state leaves the window [m]
+  double pose_sigma_rotation = 0.005;        ///< same for its rotation [rad]
+  double max_scan_gap = 0.5;                 ///< a longer time between scans is an error [s]
+
+  /// Checks value ranges; throws storey::Error naming the key (under `odometry.`) at fault.
+  void validate() const;
 };
 
 }  // namespace storey

@@ -1,9 +1,11 @@
 #pragma once
 /// The whole pipeline on one log, as the paper's method section reads:
-/// read -> IMU initialisation -> odometry (deskew, features, joint
-/// optimisation) -> [SRP back end] -> map, storeys, exports. The CLI and the
-/// CloudCompare plugin both call this.
+/// read -> odometry (IMU initialisation, deskew, features, joint
+/// optimisation) -> back end (SRP or odometry only) -> map, storeys, exports.
+/// The CLI and the CloudCompare plugin both call this. The stages and the
+/// order of the layers: docs/architecture.md.
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -12,6 +14,7 @@
 #include "map/map_cloud.h"
 #include "storeys/storey_segmentation.h"
 #include "trajectory/tum.h"
+#include "types/plane_map.h"
 
 namespace storey {
 
@@ -19,13 +22,13 @@ struct PipelineResult {
   Trajectory odometry;    ///< front-end pose of the LiDAR per scan (scan header stamps)
   Trajectory trajectory;  ///< final pose per scan (= odometry while the back end is off)
   Trajectory keyframes;   ///< map keyframes at their final poses (index = MapCloud::keyframe)
-  std::string planes_json;  ///< global SRPs (OUT/planes.json); empty when the back end is off
+  std::optional<PlaneMap> planes;  ///< global SRPs (OUT/planes.json); absent with the back end off
   /// The registered map, every point labelled with its storey (kNoStorey when
   /// storeys are off); null when config.map.enabled is false.
   std::shared_ptr<const MapCloud> map;
   std::vector<StoreyInfo> storeys;  ///< bottom up; empty when storeys are off or none found
   std::vector<std::string> files;   ///< files written, relative to out_dir
-  std::string report_json;  ///< the run report (also written to OUT/report.json)
+  std::string report_json;          ///< the run report (also written to OUT/report.json)
 };
 
 /// Runs the pipeline on `log_path` and writes into `out_dir` (created when

@@ -4,6 +4,7 @@
 #include <optional>
 
 #include "common/statistics.h"
+#include "export/map_export.h"
 #include "trajectory/drift.h"
 
 namespace storey {
@@ -22,6 +23,9 @@ struct RunReportBuilder::Data {
   std::int64_t degenerate_translation_directions = 0;
   std::int64_t degenerate_rotation_directions = 0;
   std::optional<BackendStats> backend;
+  std::optional<nlohmann::json> map, storeys;
+  std::optional<double> wall_seconds_total;
+  std::optional<std::vector<std::string>> files;
 };
 
 RunReportBuilder::RunReportBuilder(const Config& config) : data_(std::make_unique<Data>()) {
@@ -44,7 +48,8 @@ void RunReportBuilder::addScan(const OdometryResult& scan) {
   d.plane_matches.push_back(static_cast<double>(s.plane_matches));
   d.line_matches.push_back(static_cast<double>(s.line_matches));
   d.iterations.push_back(s.solver_iterations);
-  for (std::size_t i = 0; i < d.feature_rejects.size(); ++i) d.feature_rejects[i] += s.feature_rejects[i];
+  for (std::size_t i = 0; i < d.feature_rejects.size(); ++i)
+    d.feature_rejects[i] += s.feature_rejects[i];
   for (std::size_t i = 0; i < d.match_rejects.size(); ++i) d.match_rejects[i] += s.match_rejects[i];
   if (s.degenerate_translation_directions > 0 || s.degenerate_rotation_directions > 0)
     ++d.degenerate_scans;
@@ -77,16 +82,67 @@ void RunReportBuilder::setInitialisation(const ImuState& s) {
 
 void RunReportBuilder::setTrajectory(const Trajectory& trajectory) {
   const EndPointDrift d = endPointDrift(trajectory);
-  data_->drift = {{"dX_m", d.dx},         {"dY_m", d.dy},           {"dZ_m", d.dz},
-                  {"dXYZ_m", d.dxyz},     {"dYaw_rad", d.dyaw},     {"dPitch_rad", d.dpitch},
-                  {"dRoll_rad", d.droll}, {"dAngle_rad", d.dangle}, {"path_length_m", d.path_length},
+  data_->drift = {{"dX_m", d.dx},
+                  {"dY_m", d.dy},
+                  {"dZ_m", d.dz},
+                  {"dXYZ_m", d.dxyz},
+                  {"dYaw_rad", d.dyaw},
+                  {"dPitch_rad", d.dpitch},
+                  {"dRoll_rad", d.droll},
+                  {"dAngle_rad", d.dangle},
+                  {"path_length_m", d.path_length},
                   {"dXYZ_percent_of_path", d.percent_of_path()}};
   if (trajectory.size() >= 2) data_->log_seconds = trajectory.back().time - trajectory.front().time;
 }
 
-void RunReportBuilder::setWallTime(double seconds) { data_->wall_seconds = seconds; }
+void RunReportBuilder::setWallTime(double seconds) {
+  data_->wall_seconds = seconds;
+}
 
-void RunReportBuilder::setBackend(const BackendStats& stats) { data_->backend = stats; }
+void RunReportBuilder::setBackend(const BackendStats& stats) {
+  data_->backend = stats;
+}
+
+void RunReportBuilder::setMap(const MapStage& o) {
+  const StoreySegmentationStats& s = o.storeys.stats;
+  data_->map = nlohmann::json{
+      {"points", o.map ? o.map->size() : 0},
+      {"voxel_size_m", o.voxel_size},
+      {"keyframes", o.build.scans},  // map scans (the key keeps its first name)
+      {"keyframe_points", o.build.points_in},
+      {"keyframe_points_stored", o.build.points_stored},
+      {"left_out",
+       {{"beyond_range", o.build.points_beyond_range}, {"non_finite", o.build.points_non_finite}}},
+      {"segmentation",
+       {{"subsampled_points", s.subsampled_points},
+        {"planar_regions", s.regions},
+        {"floor_candidates", s.floor_candidates},
+        {"ceiling_candidates", s.ceiling_candidates},
+        {"floor_slabs", s.floor_slabs},
+        {"slabs_rejected",
+         {{"smaller_than_min_floor_area", s.slabs_too_small},
+          {"within_min_storey_height_of_a_larger_floor", s.slabs_too_close}}},
+        {"stair_cells", s.stair_cells}}},
+      {"files", o.files},
+      {"seconds",
+       {{"build", o.seconds_build},
+        {"storeys", o.seconds_storeys},
+        {"normals", s.seconds_normals},
+        {"regions", s.seconds_regions},
+        {"footprints", s.seconds_footprints},
+        {"export", o.seconds_export}}}};
+  nlohmann::json table = storeyTableJson(o.storeys.storeys);
+  for (nlohmann::json& entry : table) entry.erase("footprint");  // in storeys.json
+  data_->storeys = table;
+}
+
+void RunReportBuilder::setTotalWallTime(double seconds) {
+  data_->wall_seconds_total = seconds;
+}
+
+void RunReportBuilder::setFiles(const std::vector<std::string>& files) {
+  data_->files = files;
+}
 
 namespace {
 
@@ -149,7 +205,8 @@ nlohmann::json backendJson(const Config& config, const std::optional<BackendStat
 }
 
 // The paper's Table II: mean (and median) running time of each component [ms].
-nlohmann::json tableTwo(const std::vector<double>& ms_odometry, const std::optional<BackendStats>& b) {
+nlohmann::json tableTwo(const std::vector<double>& ms_odometry,
+                        const std::optional<BackendStats>& b) {
   nlohmann::json t = {{"lidar_inertial_odometry_per_scan", meanMedian(ms_odometry)}};
   if (b) {
     t["srp_extraction_per_keyframe"] = meanMedian(b->ms_extraction);
@@ -161,7 +218,7 @@ nlohmann::json tableTwo(const std::vector<double>& ms_odometry, const std::optio
 
 }  // namespace
 
-std::string RunReportBuilder::json() const {
+nlohmann::json RunReportBuilder::json() const {
   const Data& d = *data_;
   nlohmann::json feature_rejects = nlohmann::json::object();
   for (std::size_t i = 0; i < d.feature_rejects.size(); ++i)
@@ -198,7 +255,11 @@ std::string RunReportBuilder::json() const {
   report["log_duration_s"] = d.log_seconds;
   report["wall_time_s"] = d.wall_seconds;
   report["real_time_factor"] = d.wall_seconds > 0 ? d.log_seconds / d.wall_seconds : 0.0;
-  return report.dump(2);
+  if (d.map) report["map"] = *d.map;
+  if (d.storeys) report["storeys"] = *d.storeys;
+  if (d.wall_seconds_total) report["wall_time_s_total"] = *d.wall_seconds_total;
+  if (d.files) report["files"] = *d.files;
+  return report;
 }
 
 }  // namespace storey

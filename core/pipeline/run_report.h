@@ -2,15 +2,20 @@
 /// The run report (report.json): input counts and drops by reason, IMU
 /// initialisation, per-stage timings (median, p95, mean), feature and match
 /// counts with rejections by reason, degenerate scans, end-point drift (the
-/// paper's Table I), the back end's association counts and the paper's Table II.
+/// paper's Table I), the back end's association counts and the paper's Table
+/// II, the map stage (map and storeys sections), the files written. Built as
+/// one JSON object, written once (run_outputs.h).
 #include <memory>
+#include <nlohmann/json_fwd.hpp>
 #include <string>
+#include <vector>
 
 #include "backend/backend.h"
 #include "config/config.h"
 #include "imu/imu_state.h"
 #include "io/log_reader.h"
 #include "odometry/odometry.h"
+#include "pipeline/map_stage.h"
 #include "trajectory/tum.h"
 
 namespace storey {
@@ -26,8 +31,13 @@ class RunReportBuilder {
   void setWallTime(double seconds);
   /// The SRP back end's counts and timings (absent with --no-srp).
   void setBackend(const BackendStats& stats);
-  /// The report as pretty-printed JSON.
-  std::string json() const;
+  /// The map stage's counts and timings and the storey table.
+  void setMap(const MapStage& map);
+  /// Wall time of the whole run [s] and the files written (relative to OUT).
+  void setTotalWallTime(double seconds);
+  void setFiles(const std::vector<std::string>& files);
+  /// The report.
+  nlohmann::json json() const;
 
  private:
   struct Data;

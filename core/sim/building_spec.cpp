@@ -5,7 +5,7 @@
 #include <sstream>
 
 #include "common/error.h"
-#include "config/yaml_section.h"
+#include "common/yaml_section.h"
 #include "sim/embedded_presets.h"
 
 namespace storey::sim {

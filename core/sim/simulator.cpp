@@ -17,7 +17,7 @@
 #include "common/atomic_file.h"
 #include "common/error.h"
 #include "common/log.h"
-#include "config/calibration.h"
+#include "io/calibration_file.h"
 #include "sim/bag_writer.h"
 #include "sim/imu_csv_writer.h"
 #include "sim/imu_simulator.h"
@@ -71,20 +71,20 @@ void writeStoreys(const std::string& path, const BuildingSpec& spec, const Build
 /// The true sensor set-up. With perfect sensors the spec's noise is still
 /// reported: a pipeline needs non-zero weights.
 void writeCalibration(const std::string& path, const BuildingSpec& spec) {
-  Config config;
+  Calibration calibration;
   const SensorsSpec& s = spec.sensors;
-  config.sensor.T_imu_lidar = s.T_body_imu.inverse() * s.T_body_lidar;
-  config.sensor.time_offset_lidar_to_imu = 0.0;
-  config.sensor.lidar_model = LidarModel::kVlp16;
-  config.sensor.imu.rate_hz = s.imu.rate;
-  config.sensor.imu.gravity = s.imu.gravity;
-  config.sensor.imu.gyro_noise_density = s.imu.gyro_noise_density;
-  config.sensor.imu.accel_noise_density = s.imu.accel_noise_density;
-  config.sensor.imu.gyro_random_walk = s.imu.gyro_random_walk;
-  config.sensor.imu.accel_random_walk = s.imu.accel_random_walk;
-  config.input.points_topic = s.points_topic;
-  config.input.imu_topic = s.imu_topic;
-  writeCalibrationFile(config, path);
+  calibration.sensor.T_imu_lidar = s.T_body_imu.inverse() * s.T_body_lidar;
+  calibration.sensor.time_offset_lidar_to_imu = 0.0;
+  calibration.sensor.lidar_model = LidarModel::kVlp16;
+  calibration.sensor.imu.rate_hz = s.imu.rate;
+  calibration.sensor.imu.gravity = s.imu.gravity;
+  calibration.sensor.imu.gyro_noise_density = s.imu.gyro_noise_density;
+  calibration.sensor.imu.accel_noise_density = s.imu.accel_noise_density;
+  calibration.sensor.imu.gyro_random_walk = s.imu.gyro_random_walk;
+  calibration.sensor.imu.accel_random_walk = s.imu.accel_random_walk;
+  calibration.points_topic = s.points_topic;
+  calibration.imu_topic = s.imu_topic;
+  writeCalibrationFile(calibration, path);
 }
 
 /// A temporary sibling folder that is removed unless committed.

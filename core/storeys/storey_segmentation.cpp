@@ -87,8 +87,8 @@ double cellArea(const std::vector<std::size_t>& point_indices,
 
 std::vector<Slab> clusterByElevation(const std::vector<HorizontalRegion>& candidates,
                                      const std::vector<PlanarRegion>& regions,
-                                     const std::vector<Eigen::Vector3d>& points,
-                                     double tolerance, double cell) {
+                                     const std::vector<Eigen::Vector3d>& points, double tolerance,
+                                     double cell) {
   std::vector<std::size_t> order(candidates.size());
   for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
   std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
@@ -118,37 +118,10 @@ std::vector<Slab> clusterByElevation(const std::vector<HorizontalRegion>& candid
 
 }  // namespace
 
-void validateStoreysConfig(const StoreysConfig& c) {
-  auto positive = [](double v, const char* key) {
-    if (!(v > 0.0)) throw Error(std::string("key 'storeys.") + key + "' must be positive");
-  };
-  positive(c.voxel_size, "voxel_size");
-  positive(c.plane_distance, "plane_distance");
-  positive(c.min_region_area, "min_region_area");
-  positive(c.slab_tolerance, "slab_tolerance");
-  positive(c.min_floor_area, "min_floor_area");
-  positive(c.min_storey_height, "min_storey_height");
-  positive(c.floor_tolerance, "floor_tolerance");
-  positive(c.min_clear_height, "min_clear_height");
-  positive(c.stairs_cell_size, "stairs_cell_size");
-  positive(c.stairs_min_rise, "stairs_min_rise");
-  positive(c.stairs_trajectory_distance, "stairs_trajectory_distance");
-  positive(c.footprint_alpha, "footprint_alpha");
-  if (c.normal_neighbours < 6) throw Error("key 'storeys.normal_neighbours' must be >= 6");
-  if (!(c.plane_angle_deg > 0.0 && c.plane_angle_deg <= 90.0))
-    throw Error("key 'storeys.plane_angle_deg' must be in (0, 90]");
-  if (!(c.horizontal_angle_deg > 0.0 && c.horizontal_angle_deg < 90.0))
-    throw Error("key 'storeys.horizontal_angle_deg' must be in (0, 90)");
-  if (!(c.max_clear_height > c.min_clear_height))
-    throw Error("key 'storeys.max_clear_height' must be larger than 'storeys.min_clear_height'");
-  if (!(c.floor_tolerance < c.min_storey_height))
-    throw Error("key 'storeys.floor_tolerance' must be below 'storeys.min_storey_height'");
-}
-
 StoreySegmentation segmentStoreys(MapCloud& map,
                                   const std::vector<Eigen::Vector3d>& keyframe_positions,
                                   const StoreysConfig& config, const ProgressFn& progress) {
-  validateStoreysConfig(config);
+  config.validate();
   StoreySegmentation result;
   StoreySegmentationStats& stats = result.stats;
   std::fill(map.storey.begin(), map.storey.end(), kNoStorey);
@@ -165,7 +138,8 @@ StoreySegmentation segmentStoreys(MapCloud& map,
   if (sub.points.size() < 16) return result;
   std::vector<Eigen::Vector3d> normals = estimateNormals(sub.points, config.normal_neighbours);
   auto sensorOf = [&](std::int32_t keyframe) -> const Eigen::Vector3d* {
-    if (keyframe < 0 || static_cast<std::size_t>(keyframe) >= keyframe_positions.size()) return nullptr;
+    if (keyframe < 0 || static_cast<std::size_t>(keyframe) >= keyframe_positions.size())
+      return nullptr;
     const Eigen::Vector3d& s = keyframe_positions[static_cast<std::size_t>(keyframe)];
     return s.allFinite() ? &s : nullptr;
   };
@@ -180,8 +154,8 @@ StoreySegmentation segmentStoreys(MapCloud& map,
   t0 = std::chrono::steady_clock::now();
   report(0.3, "storeys: planes");
   const double cell_area = config.voxel_size * config.voxel_size;
-  const std::size_t min_points = std::max<std::size_t>(
-      3, static_cast<std::size_t>(0.5 * config.min_region_area / cell_area));
+  const std::size_t min_points =
+      std::max<std::size_t>(3, static_cast<std::size_t>(0.5 * config.min_region_area / cell_area));
   const std::vector<PlanarRegion> regions =
       detectPlanarRegions(sub.points, normals, config.normal_neighbours, config.plane_distance,
                           config.plane_angle_deg, min_points);
@@ -227,8 +201,9 @@ StoreySegmentation segmentStoreys(MapCloud& map,
     else
       ++stats.slabs_too_small;
   }
-  std::sort(by_area.begin(), by_area.end(),
-            [&](std::size_t a, std::size_t b) { return floor_slabs[a].area > floor_slabs[b].area; });
+  std::sort(by_area.begin(), by_area.end(), [&](std::size_t a, std::size_t b) {
+    return floor_slabs[a].area > floor_slabs[b].area;
+  });
   std::vector<std::size_t> floors;
   for (std::size_t s : by_area) {
     bool clear = true;
@@ -331,7 +306,8 @@ StoreySegmentation segmentStoreys(MapCloud& map,
       const std::int64_t ci = static_cast<std::int64_t>((key >> 42) & mask) - bias;
       const std::int64_t cj = static_cast<std::int64_t>((key >> 21) & mask) - bias;
       for (std::int64_t di = -1; di <= 1; ++di)
-        for (std::int64_t dj = -1; dj <= 1; ++dj) stair_cells[k].insert(packVoxel(ci + di, cj + dj, 0));
+        for (std::int64_t dj = -1; dj <= 1; ++dj)
+          stair_cells[k].insert(packVoxel(ci + di, cj + dj, 0));
     }
     stats.stair_cells += stair_cells[k].size();
   }

@@ -33,16 +33,16 @@
 namespace storey {
 
 struct StoreyInfo {
-  int index = 0;                 ///< 0 = lowest
-  double floor_elevation = 0.0;  ///< world z of the top of the floor slab [m]
+  int index = 0;                            ///< 0 = lowest
+  double floor_elevation = 0.0;             ///< world z of the top of the floor slab [m]
   std::optional<double> ceiling_elevation;  ///< world z of the ceiling's underside [m]
-  std::optional<double> height;        ///< floor to the next floor [m]; none for the top storey
-  std::optional<double> clear_height;  ///< floor to ceiling [m]
-  double floor_area_detected = 0.0;    ///< area of the floor slab's planar regions [m^2]
-  double footprint_area = 0.0;         ///< area inside the footprint alpha shape [m^2]
+  std::optional<double> height;            ///< floor to the next floor [m]; none for the top storey
+  std::optional<double> clear_height;      ///< floor to ceiling [m]
+  double floor_area_detected = 0.0;        ///< area of the floor slab's planar regions [m^2]
+  double footprint_area = 0.0;             ///< area inside the footprint alpha shape [m^2]
   std::vector<Eigen::Vector2d> footprint;  ///< outer boundary, counter-clockwise, world x y [m]
-  std::size_t points = 0;        ///< map points labelled with this storey
-  std::size_t stair_points = 0;  ///< of them, flagged as stairs
+  std::size_t points = 0;                  ///< map points labelled with this storey
+  std::size_t stair_points = 0;            ///< of them, flagged as stairs
 };
 
 /// Why candidates were dropped (counts, for the report).
@@ -74,9 +74,6 @@ struct StoreySegmentation {
 StoreySegmentation segmentStoreys(MapCloud& map,
                                   const std::vector<Eigen::Vector3d>& keyframe_positions,
                                   const StoreysConfig& config, const ProgressFn& progress = {});
-
-/// Throws storey::Error naming the key (storeys.<key>) when a value is out of range.
-void validateStoreysConfig(const StoreysConfig& config);
 
 // ---- CGAL parts (storeys/cgal_*.cpp), exposed for tests ----
 

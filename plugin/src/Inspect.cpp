@@ -8,8 +8,9 @@
 #include <limits>
 
 #include "Entities.h"
-#include "PlanesJson.h"
+#include "PlanePatch.h"
 #include "common/error.h"
+#include "export/planes_json.h"
 
 namespace storey::plugin {
 
@@ -23,7 +24,9 @@ struct RunPlanes {
 RunPlanes runPlanes(const ccHObject& group) {
   if (!group.hasMetaData(kMetaPlanesJson))
     throw Error("this Storey run has no SRPs (the back end was off)");
-  return {parsePlanesJson(group.getMetaData(kMetaPlanesJson).toString().toStdString()),
+  return {parsePlanesJson(group.getMetaData(kMetaPlanesJson).toString().toStdString(),
+                          "the run's planes")
+              .planes,
           trajectoryFromText(group.getMetaData(kMetaKeyframes).toString())};
 }
 
@@ -85,14 +88,15 @@ QStringList showPlanesOfKeyframe(ccHObject& run_group, int keyframe) {
       for (const PlaneObservation& o : p.observations) {
         if (o.keyframe != keyframe) continue;
         seen = true;
-        lines << QString("SRP %1: %2 points, n = (%3, %4, %5), d = %6 m in the keyframe's LiDAR "
-                         "frame, fit rms %7 m, chi2 %8%9")
+        lines << QString(
+                     "SRP %1: %2 points, n = (%3, %4, %5), d = %6 m in the keyframe's LiDAR "
+                     "frame, fit rms %7 m, chi2 %8%9")
                      .arg(id)
                      .arg(o.points)
-                     .arg(o.normal.x(), 0, 'f', 3)
-                     .arg(o.normal.y(), 0, 'f', 3)
-                     .arg(o.normal.z(), 0, 'f', 3)
-                     .arg(o.distance, 0, 'f', 3)
+                     .arg(o.normal_keyframe.x(), 0, 'f', 3)
+                     .arg(o.normal_keyframe.y(), 0, 'f', 3)
+                     .arg(o.normal_keyframe.z(), 0, 'f', 3)
+                     .arg(o.distance_keyframe, 0, 'f', 3)
                      .arg(o.fit_rms, 0, 'f', 3)
                      .arg(o.residual_chi2, 0, 'f', 2)
                      .arg(o.outlier ? " (outlier)" : "");
@@ -105,7 +109,8 @@ QStringList showPlanesOfKeyframe(ccHObject& run_group, int keyframe) {
 }
 
 int keyframeCount(const ccHObject& run_group) {
-  return static_cast<int>(trajectoryFromText(run_group.getMetaData(kMetaKeyframes).toString()).size());
+  return static_cast<int>(
+      trajectoryFromText(run_group.getMetaData(kMetaKeyframes).toString()).size());
 }
 
 }  // namespace storey::plugin

@@ -6,7 +6,7 @@
 #include <set>
 
 #include "common/error.h"
-#include "config/calibration.h"
+#include "config/config.h"
 #include "export/point_cloud_writers.h"
 
 namespace storey::plugin {
@@ -34,20 +34,17 @@ Config loadRequestConfig(const RunRequest& request) {
   return loadRunConfig(request.config_path, resolveCalibration(request));
 }
 
-RunOutcome runStorey(const RunRequest& request, const Config& config,
-                     const ProgressFn& progress) {
+RunOutcome runStorey(const RunRequest& request, const Config& config, const ProgressFn& progress) {
   if (request.log_path.empty()) throw Error("no log given");
   std::error_code ec;
-  if (!fs::exists(request.log_path, ec))
-    throw Error(request.log_path + ": no such file or folder");
+  if (!fs::exists(request.log_path, ec)) throw Error(request.log_path + ": no such file or folder");
   RunOutcome outcome;
   outcome.log_path = request.log_path;
   outcome.out_dir = resolveOutDir(request);
   outcome.calibration_path = resolveCalibration(request);
   const auto start = std::chrono::steady_clock::now();
   outcome.result = runPipeline(request.log_path, config, outcome.out_dir, progress);
-  outcome.seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  outcome.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return outcome;
 }
 
@@ -68,8 +65,7 @@ std::vector<std::uint32_t> pointsOfStorey(const MapCloud& map, int storey) {
 std::vector<std::string> exportStoreys(const MapCloud& map, const std::string& dir,
                                        const StoreyExportFormats& formats) {
   const std::vector<int> storeys = storeyIndices(map);
-  if (storeys.empty())
-    throw Error("the cloud has no storey labels (was storey segmentation on?)");
+  if (storeys.empty()) throw Error("the cloud has no storey labels (was storey segmentation on?)");
   std::error_code ec;
   fs::create_directories(dir, ec);
   if (ec) throw Error(dir + ": cannot create the folder: " + ec.message());

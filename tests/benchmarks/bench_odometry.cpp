@@ -11,7 +11,7 @@
 #include <filesystem>
 #include <random>
 
-#include "config/calibration.h"
+#include "config/config.h"
 #include "io/log_reader.h"
 #include "odometry/odometry.h"
 #include "sim/simulator.h"
@@ -29,8 +29,9 @@ const Log& benchmarkLog() {
   static const Log log = [] {
     const char* preset_env = std::getenv("STOREY_BENCH_PRESET");
     const std::string preset = preset_env ? preset_env : "default";
-    const std::filesystem::path dir = std::filesystem::temp_directory_path() /
-                                      ("storey-bench-" + preset + "-" + std::to_string(std::random_device{}()));
+    const std::filesystem::path dir =
+        std::filesystem::temp_directory_path() /
+        ("storey-bench-" + preset + "-" + std::to_string(std::random_device{}()));
     sim::SimulationOptions options;
     options.compress = false;
     // A slice of the walk is enough for a stable per-scan median.
@@ -38,7 +39,8 @@ const Log& benchmarkLog() {
     sim::simulate(sim::loadBuildingSpec(preset), options, dir.string());
     Log result;
     result.config = loadRunConfig("", (dir / sim::kCalibrationFile).string());
-    auto reader = openLog((dir / sim::kBagFile).string(), result.config);
+    auto reader =
+        openLog((dir / sim::kBagFile).string(), result.config.input, result.config.sensor);
     LogMessage message;
     while (reader->next(message)) {
       if (std::holds_alternative<Scan>(message)) ++result.scans;
@@ -55,18 +57,24 @@ void BM_OdometryPerScan(benchmark::State& state) {
   std::vector<double> total_ms;
   for (auto _ : state) {
     std::int64_t emitted = 0;
-    LidarInertialOdometry odometry(log.config, [&](OdometryResult&& r) {
-      ++emitted;
-      total_ms.push_back(r.stats.ms_total);
-    });
+    LidarInertialOdometry odometry(log.config.odometry, log.config.sensor);
+    OdometryResult r;
+    auto drain = [&] {
+      while (odometry.nextResult(r)) {
+        ++emitted;
+        total_ms.push_back(r.stats.ms_total);
+      }
+    };
     for (const LogMessage& message : log.messages) {
       if (const auto* scan = std::get_if<Scan>(&message)) {
         odometry.addScan(*scan);
       } else {
         odometry.addImu(std::get<ImuSample>(message));
       }
+      drain();
     }
     odometry.finish();
+    drain();
     benchmark::DoNotOptimize(emitted);
   }
   // Time per scan: the benchmark's own clock divided by the scans of one pass.

@@ -7,7 +7,6 @@
 #include <memory>
 #include <string>
 
-#include "config/calibration.h"
 #include "config/config.h"
 #include "sim/simulator.h"
 #include "support/temp_dir.h"

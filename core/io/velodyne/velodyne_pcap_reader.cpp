@@ -37,8 +37,8 @@ std::string hex2(std::uint8_t v) {
 
 /// Time spanned by one data packet of `model` [s].
 double packetPeriod(Model model, bool dual) {
-  const double single = model == Model::kVlp16 ? 12 * 2 * velodyne::kVlp16SequenceS
-                                               : 12 * velodyne::kHdl32eSequenceS;
+  const double single =
+      model == Model::kVlp16 ? 12 * 2 * velodyne::kVlp16SequenceS : 12 * velodyne::kHdl32eSequenceS;
   return dual ? single / 2 : single;
 }
 
@@ -63,9 +63,9 @@ struct LaterPacket {
 
 }  // namespace
 
-VelodynePcapOptions velodynePcapOptions(const Config& config) {
+VelodynePcapOptions velodynePcapOptions(const InputConfig& input, const SensorConfig& sensor) {
   VelodynePcapOptions o;
-  const InputConfig& in = config.input;
+  const InputConfig& in = input;
   if (in.velodyne_model == "VLP-16") o.model = Model::kVlp16;
   if (in.velodyne_model == "HDL-32E") o.model = Model::kHdl32e;
   o.calibration_xml = in.velodyne_calibration;
@@ -76,13 +76,16 @@ VelodynePcapOptions velodynePcapOptions(const Config& config) {
   o.position_port = static_cast<std::uint16_t>(in.pcap_position_port);
   o.imu_csv = in.imu_csv;
   o.imu_csv_offset_ns = secondsToNs(in.imu_csv_time_offset);
-  o.lidar_to_imu_offset_ns = secondsToNs(config.sensor.time_offset_lidar_to_imu);
+  o.lidar_to_imu_offset_ns = secondsToNs(sensor.time_offset_lidar_to_imu);
   return o;
 }
 
 struct VelodynePcapReader::Impl {
   Impl(const std::string& path, const VelodynePcapOptions& options)
-      : path_(path), options_(options), pcap_(path), sequencer_(sequencerOptions(options), stats_) {}
+      : path_(path),
+        options_(options),
+        pcap_(path),
+        sequencer_(sequencerOptions(options), stats_) {}
 
   static MessageSequencer::Options sequencerOptions(const VelodynePcapOptions& o) {
     MessageSequencer::Options s;
@@ -97,7 +100,8 @@ struct VelodynePcapReader::Impl {
     return d.dst_port == options_.data_port || d.src_port == options_.data_port;
   }
   bool isPositionPort(const velodyne::UdpDatagram& d) const {
-    if (options_.position_port == 0) return d.size <= velodyne::kPositionPacketSize && d.size > 0 && !isDataPort(d);
+    if (options_.position_port == 0)
+      return d.size <= velodyne::kPositionPacketSize && d.size > 0 && !isDataPort(d);
     return d.dst_port == options_.position_port || d.src_port == options_.position_port;
   }
 
@@ -107,7 +111,8 @@ struct VelodynePcapReader::Impl {
     std::vector<std::int64_t> stamps;
     std::map<std::uint16_t, std::int64_t> ports;
     bool first = true;
-    while (probe_.data_packets < kProbeDataPackets && file.records() < kProbeRecords && file.next(d)) {
+    while (probe_.data_packets < kProbeDataPackets && file.records() < kProbeRecords &&
+           file.next(d)) {
       ++ports[d.dst_port];
       if (isDataPort(d) && d.size == velodyne::kDataPacketSize && d.payload[0] == 0xFF &&
           d.payload[1] == 0xEE) {
@@ -129,13 +134,14 @@ struct VelodynePcapReader::Impl {
     if (probe_.data_packets == 0) {
       std::string seen;
       for (const auto& [port, count] : ports) {
-        seen += (seen.empty() ? "" : ", ") + std::to_string(count) + " on port " + std::to_string(port);
+        seen +=
+            (seen.empty() ? "" : ", ") + std::to_string(count) + " on port " + std::to_string(port);
       }
       std::string where = file.cutAt().empty() ? "" : "; the file is cut: " + file.cutAt();
-      throw Error(path_ + ": no Velodyne data packet (1206-byte UDP payload starting 0xFF 0xEE on port " +
-                  std::to_string(options_.data_port) + ") in the first " +
-                  std::to_string(file.records()) + " records (UDP datagrams: " +
-                  (seen.empty() ? "none" : seen) + ")" + where);
+      throw Error(
+          path_ + ": no Velodyne data packet (1206-byte UDP payload starting 0xFF 0xEE on port " +
+          std::to_string(options_.data_port) + ") in the first " + std::to_string(file.records()) +
+          " records (UDP datagrams: " + (seen.empty() ? "none" : seen) + ")" + where);
     }
     std::vector<double> steps;
     for (std::size_t i = 1; i < stamps.size(); ++i) {
@@ -153,13 +159,19 @@ struct VelodynePcapReader::Impl {
         probe_.model = Model::kVlp16;
         probe_.model_from_product_id = true;
         if (probe_.product == 0x24) {
-          logWarning(path_ + ": product id 0x24 (VLP-16 Hi-Res): decoded with the VLP-16 layout; "
+          logWarning(path_ +
+                     ": product id 0x24 (VLP-16 Hi-Res): decoded with the VLP-16 layout; "
                      "give its laser table with input.velodyne_calibration");
         }
         break;
-      case 0x28: case 0x31: case 0xA1: case 0x11: case 0x12:
-        throw Error(path_ + ": Velodyne product id " + hex2(probe_.product) +
-                    " (VLP-32C, VLS-128 or HDL-64E) is not supported; Storey decodes VLP-16 and HDL-32E");
+      case 0x28:
+      case 0x31:
+      case 0xA1:
+      case 0x11:
+      case 0x12:
+        throw Error(
+            path_ + ": Velodyne product id " + hex2(probe_.product) +
+            " (VLP-32C, VLS-128 or HDL-64E) is not supported; Storey decodes VLP-16 and HDL-32E");
       default: {
         // 0x21 (HDL-32E, also sent by early VLP-16 firmware) or 0x00: tell the
         // models apart by the time one packet spans.
@@ -192,12 +204,14 @@ struct VelodynePcapReader::Impl {
     if (!options_.imu_csv.empty()) {
       csv_ = std::make_unique<ImuCsvReader>(options_.imu_csv, options_.imu_csv_offset_ns);
       if (probe_.position_packets > 0) {
-        logInfo(path_ + ": IMU from " + options_.imu_csv + "; the HDL-32E position packets are ignored");
+        logInfo(path_ + ": IMU from " + options_.imu_csv +
+                "; the HDL-32E position packets are ignored");
       }
     } else if (probe_.position_packets > 0) {
       imu_from_packets_ = true;
     } else if (options_.require_imu) {
-      throw Error(path_ + ": no IMU: the capture holds no HDL-32E position packet with IMU values; "
+      throw Error(path_ +
+                  ": no IMU: the capture holds no HDL-32E position packet with IMU values; "
                   "give an IMU CSV (input.imu_csv, --imu-csv)");
     }
   }
@@ -235,7 +249,7 @@ struct VelodynePcapReader::Impl {
     if (isDataPort(d) && (options_.data_port != 0 || d.size >= 2)) {
       if (d.size != velodyne::kDataPacketSize) {
         ++stats_.dropped[d.size < velodyne::kDataPacketSize ? kDropPacketTruncated
-                                                             : "velodyne_packet_wrong_size"];
+                                                            : "velodyne_packet_wrong_size"];
         return true;
       }
       std::uint32_t toh;
@@ -243,7 +257,8 @@ struct VelodynePcapReader::Impl {
       velodyne::peekDataPacket(d.payload, d.size, toh, mode, product);
       std::int64_t t = 0;
       if (options_.capture_clock) {
-        t = d.record_ns - static_cast<std::int64_t>(packetPeriod(decoder_->model(), mode == 0x39) * 1e9);
+        t = d.record_ns -
+            static_cast<std::int64_t>(packetPeriod(decoder_->model(), mode == 0x39) * 1e9);
       } else {
         t = sensorTime(toh, d.record_ns, true);
       }
@@ -271,11 +286,13 @@ struct VelodynePcapReader::Impl {
     velodyne::PositionPacket packet;
     velodyne::decodePositionPacket(d.payload, d.size, packet);
     ImuSample imu;
-    imu.stamp_ns = options_.capture_clock ? d.record_ns : sensorTime(packet.timestamp_us, d.record_ns, false);
+    imu.stamp_ns =
+        options_.capture_clock ? d.record_ns : sensorTime(packet.timestamp_us, d.record_ns, false);
     // Axes (docs/formats.md): z up = the two vertical accelerometer axes
     // (boards 1 and 2, X), x and y = board 3's horizontal axes; gyros 1, 2, 3
     // about x, y, z.
-    imu.gyro = Eigen::Vector3d(packet.gyro_dps[0], packet.gyro_dps[1], packet.gyro_dps[2]) * kDegToRad;
+    imu.gyro =
+        Eigen::Vector3d(packet.gyro_dps[0], packet.gyro_dps[1], packet.gyro_dps[2]) * kDegToRad;
     imu.accel = Eigen::Vector3d(packet.accel_g[4], packet.accel_g[5],
                                 0.5 * (packet.accel_g[0] + packet.accel_g[2])) *
                 kStandardGravity;
@@ -299,7 +316,8 @@ struct VelodynePcapReader::Impl {
     if (have_arrived_ && t_ns < newest_arrived_ns_) ++stats_.dropped[kReorderedPackets];
     newest_arrived_ns_ = have_arrived_ ? std::max(newest_arrived_ns_, t_ns) : t_ns;
     have_arrived_ = true;
-    held_.push_back(HeldPacket{t_ns, arrivals_++, std::vector<std::uint8_t>(d.payload, d.payload + d.size)});
+    held_.push_back(
+        HeldPacket{t_ns, arrivals_++, std::vector<std::uint8_t>(d.payload, d.payload + d.size)});
     std::push_heap(held_.begin(), held_.end(), LaterPacket());
     if (held_.size() > options_.reorder_packets) releaseOne();
   }
@@ -320,7 +338,8 @@ struct VelodynePcapReader::Impl {
       return;
     }
     if (decoded_.product != probe_.product && decoded_.product != 0 && probe_.product != 0 &&
-        decoded_.product != velodyne::kProductHdl32e && decoded_.product != velodyne::kProductVlp16) {
+        decoded_.product != velodyne::kProductHdl32e &&
+        decoded_.product != velodyne::kProductVlp16) {
       ++stats_.dropped[kDropPacketOtherModel];
       return;
     }
@@ -372,8 +391,8 @@ struct VelodynePcapReader::Impl {
   void releaseCoveredScans() {
     while (!awaiting_imu_.empty() && have_imu_) {
       const Scan& scan = awaiting_imu_.front();
-      const std::int64_t end_ns = scan.stamp_ns + secondsToNs(scan.timeSpan().second) +
-                                  options_.lidar_to_imu_offset_ns;
+      const std::int64_t end_ns =
+          scan.stamp_ns + secondsToNs(scan.timeSpan().second) + options_.lidar_to_imu_offset_ns;
       if (end_ns > last_imu_ns_) break;
       sequencer_.push(std::move(awaiting_imu_.front()));
       awaiting_imu_.pop_front();
@@ -416,11 +435,13 @@ struct VelodynePcapReader::Impl {
     awaiting_imu_.clear();
     if (csv_) {
       if (stats_.scans + static_cast<std::int64_t>(sequencer_.buffered()) > 0) {
-        feedCsv(last_scan_ns_ + options_.lidar_to_imu_offset_ns + kCsvLeadNs + 1'000'000'000, last_scan_ns_);
+        feedCsv(last_scan_ns_ + options_.lidar_to_imu_offset_ns + kCsvLeadNs + 1'000'000'000,
+                last_scan_ns_);
       }
       if (csv_->badLines() > 0) stats_.dropped[kDropImuCsvBadLine] = csv_->badLines();
       if (csv_pushed_ == 0) {
-        logWarning(options_.imu_csv + ": no IMU sample overlaps the capture's time span (check "
+        logWarning(options_.imu_csv +
+                   ": no IMU sample overlaps the capture's time span (check "
                    "the CSV's time base and input.imu_csv_time_offset)");
       }
     }
@@ -459,7 +480,9 @@ struct VelodynePcapReader::Impl {
   }
 
   /// Turns over time of the last packets (up to 2000).
-  double rotationHz() const { return rotation_time_s_ > 0.0 ? rotation_turns_ / rotation_time_s_ : 0.0; }
+  double rotationHz() const {
+    return rotation_time_s_ > 0.0 ? rotation_turns_ / rotation_time_s_ : 0.0;
+  }
 
   std::string path_;
   VelodynePcapOptions options_;
@@ -500,7 +523,7 @@ struct VelodynePcapReader::Impl {
   std::int64_t csv_pushed_ = 0;
   std::int64_t last_scan_ns_ = 0;
   bool have_imu_ = false;
-  std::int64_t last_imu_ns_ = 0;  ///< newest IMU stamp pushed
+  std::int64_t last_imu_ns_ = 0;   ///< newest IMU stamp pushed
   std::deque<Scan> awaiting_imu_;  ///< scans not yet covered by the IMU
 };
 
@@ -511,11 +534,21 @@ VelodynePcapReader::VelodynePcapReader(const std::string& path, const VelodynePc
 
 VelodynePcapReader::~VelodynePcapReader() = default;
 
-bool VelodynePcapReader::next(LogMessage& message) { return impl_->next(message); }
-const LogReadStats& VelodynePcapReader::stats() const { return impl_->stats_; }
-const VelodyneProbe& VelodynePcapReader::probe() const { return impl_->probe_; }
-double VelodynePcapReader::rotationHz() const { return impl_->rotationHz(); }
-std::int64_t VelodynePcapReader::dataPackets() const { return impl_->data_packets_; }
+bool VelodynePcapReader::next(LogMessage& message) {
+  return impl_->next(message);
+}
+const LogReadStats& VelodynePcapReader::stats() const {
+  return impl_->stats_;
+}
+const VelodyneProbe& VelodynePcapReader::probe() const {
+  return impl_->probe_;
+}
+double VelodynePcapReader::rotationHz() const {
+  return impl_->rotationHz();
+}
+std::int64_t VelodynePcapReader::dataPackets() const {
+  return impl_->data_packets_;
+}
 const std::map<std::uint16_t, std::int64_t>& VelodynePcapReader::datagramsByPort() const {
   return impl_->ports_;
 }
@@ -547,8 +580,9 @@ std::string VelodynePcapReader::describe() const {
   return text.str();
 }
 
-std::unique_ptr<LogReader> openVelodynePcapLog(const std::string& path, const Config& config) {
-  return std::make_unique<VelodynePcapReader>(path, velodynePcapOptions(config));
+std::unique_ptr<LogReader> openVelodynePcapLog(const std::string& path, const InputConfig& input,
+                                               const SensorConfig& sensor) {
+  return std::make_unique<VelodynePcapReader>(path, velodynePcapOptions(input, sensor));
 }
 
 }  // namespace storey

@@ -9,7 +9,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
-#include "config/calibration.h"
+#include "config/config.h"
 #include "eval/evaluation.h"
 #include "pipeline/pipeline.h"
 #include "sim/simulator.h"
@@ -39,10 +39,11 @@ TEST_F(BackendTiny, OptimisedTrajectoryIsAccurateAndOutputsAreComplete) {
   const eval::TrajectoryEvaluation e_odo = eval::evaluateTrajectory(gt, r.odometry);
   const double ate = e.ateWith(eval::Alignment::kYawTranslation).translation.rmse;
   const double ate_rot = e.ateWith(eval::Alignment::kYawTranslation).rotation.rmse;
-  std::cout << "tiny: ATE (yaw + translation aligned) " << ate << " m, " << ate_rot << " rad; odometry "
-            << e_odo.ateWith(eval::Alignment::kYawTranslation).translation.rmse << " m; end-point drift "
-            << e.est_drift.dxyz << " m " << e.est_drift.dangle << " rad (odometry "
-            << e_odo.est_drift.dxyz << " m " << e_odo.est_drift.dangle << " rad)\n";
+  std::cout << "tiny: ATE (yaw + translation aligned) " << ate << " m, " << ate_rot
+            << " rad; odometry " << e_odo.ateWith(eval::Alignment::kYawTranslation).translation.rmse
+            << " m; end-point drift " << e.est_drift.dxyz << " m " << e.est_drift.dangle
+            << " rad (odometry " << e_odo.est_drift.dxyz << " m " << e_odo.est_drift.dangle
+            << " rad)\n";
   EXPECT_LT(ate, 0.05);
   EXPECT_LT(ate_rot, 0.01);
   EXPECT_LT(e.est_drift.dxyz, 0.05);
@@ -56,7 +57,8 @@ TEST_F(BackendTiny, OptimisedTrajectoryIsAccurateAndOutputsAreComplete) {
   }
 
   // Outputs.
-  for (const char* f : {"trajectory.tum", "odometry.tum", "keyframes.tum", "planes.json", "report.json"})
+  for (const char* f :
+       {"trajectory.tum", "odometry.tum", "keyframes.tum", "planes.json", "report.json"})
     EXPECT_TRUE(std::filesystem::exists(std::filesystem::path(out) / f)) << f;
   const Trajectory keyframes = readTum(out + "/keyframes.tum");
   EXPECT_GE(keyframes.size(), 7u);  // 9.4 m walked, a keyframe per metre
@@ -97,7 +99,8 @@ TEST_F(BackendTiny, OptimisedTrajectoryIsAccurateAndOutputsAreComplete) {
     const double median = sorted[sorted.size() / 2];
     Eigen::Vector3d mean_normal = Eigen::Vector3d::Zero();  // oriented like the first
     for (const Plane& p : world)
-      mean_normal += p.normal().dot(world[0].normal()) > 0 ? p.normal() : Eigen::Vector3d(-p.normal());
+      mean_normal +=
+          p.normal().dot(world[0].normal()) > 0 ? p.normal() : Eigen::Vector3d(-p.normal());
     mean_normal.normalize();
     for (std::size_t i = 0; i < world.size(); ++i) {
       ++observations;
@@ -112,7 +115,8 @@ TEST_F(BackendTiny, OptimisedTrajectoryIsAccurateAndOutputsAreComplete) {
     }
   }
   std::cout << "tiny: " << planes["planes"].size() << " planes, " << observations
-            << " observations, " << wrong << " wrong by the truth, " << flagged << " down-weighted\n";
+            << " observations, " << wrong << " wrong by the truth, " << flagged
+            << " down-weighted\n";
   EXPECT_GT(observations, 20);
   // No wrong association survives the robust loss (tiny has none at all);
   // the report counts what planes.json flags, a small share of the observations.

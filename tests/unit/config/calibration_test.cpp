@@ -1,4 +1,4 @@
-#include "config/calibration.h"
+#include "config/config.h"
 
 #include <gtest/gtest.h>
 
@@ -76,7 +76,7 @@ TEST(Calibration, WriteReadRoundTrip) {
   written.sensor.lidar_model = LidarModel::kHdl32e;
   written.input.points_topic = "/points";
   const std::string path = dir.file("calibration.yaml");
-  writeCalibrationFile(written, path);
+  writeCalibrationFile(calibrationOf(written), path);
   Config read;
   applyCalibrationFile(read, path);
   EXPECT_TRUE(read.sensor.T_imu_lidar.isApprox(written.sensor.T_imu_lidar, 1e-12, 1e-12));
@@ -102,21 +102,28 @@ TEST(Calibration, BadFilesNameTheKeyAtFault) {
   const BadCase cases[] = {
       {"missing extrinsic", "imu:\n  rate_hz: 400\n", "'T_imu_lidar'"},
       {"missing rotation", "T_imu_lidar:\n  translation: [0, 0, 0]\n", "T_imu_lidar.rotation_xyzw"},
-      {"non-unit quaternion", "T_imu_lidar:\n  translation: [0, 0, 0]\n  rotation_xyzw: [0, 0, 0, 2]\n",
+      {"non-unit quaternion",
+       "T_imu_lidar:\n  translation: [0, 0, 0]\n  rotation_xyzw: [0, 0, 0, 2]\n",
        "T_imu_lidar.rotation_xyzw"},
       {"wrong length", "T_imu_lidar:\n  translation: [0, 0, 0]\n  rotation_xyzw: [0, 0, 1]\n",
        "T_imu_lidar.rotation_xyzw"},
-      {"unknown key", "T_imu_lidar:\n  translation: [0, 0, 0]\n  rotation_xyzw: [0, 0, 0, 1]\ntime_ofset: 0.1\n",
+      {"unknown key",
+       "T_imu_lidar:\n  translation: [0, 0, 0]\n  rotation_xyzw: [0, 0, 0, 1]\ntime_ofset: 0.1\n",
        "'time_ofset'"},
       {"nested unknown key",
        "T_imu_lidar:\n  translation: [0, 0, 0]\n  rotation_xyzw: [0, 0, 0, 1]\nimu:\n  rate: 100\n",
        "'imu.rate'"},
-      {"wrong type", "T_imu_lidar:\n  translation: [0, 0, 0]\n  rotation_xyzw: [0, 0, 0, 1]\nimu:\n  gravity: strong\n",
+      {"wrong type",
+       "T_imu_lidar:\n  translation: [0, 0, 0]\n  rotation_xyzw: [0, 0, 0, 1]\nimu:\n  gravity: "
+       "strong\n",
        "'imu.gravity'"},
-      {"bad model", "T_imu_lidar:\n  translation: [0, 0, 0]\n  rotation_xyzw: [0, 0, 0, 1]\nlidar:\n  model: VLP-32\n",
+      {"bad model",
+       "T_imu_lidar:\n  translation: [0, 0, 0]\n  rotation_xyzw: [0, 0, 0, 1]\nlidar:\n  model: "
+       "VLP-32\n",
        "'lidar.model'"},
       {"offset out of range",
-       "T_imu_lidar:\n  translation: [0, 0, 0]\n  rotation_xyzw: [0, 0, 0, 1]\ntime_offset_lidar_to_imu: 5\n",
+       "T_imu_lidar:\n  translation: [0, 0, 0]\n  rotation_xyzw: [0, 0, 0, "
+       "1]\ntime_offset_lidar_to_imu: 5\n",
        "time_offset_lidar_to_imu"},
       {"empty", "", "empty"},
       {"not a mapping", "- 1\n- 2\n", "mapping"},

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "common/error.h"
+#include "config/config.h"
 #include "eval/registration_bias.h"
 #include "io/log_reader.h"
 #include "support/run_storey.h"
@@ -20,8 +21,8 @@ class RegistrationBias : public test::TinySimulation {
  protected:
   static RegistrationBiasResult measure(const Trajectory& truth) {
     const Config config = simConfig();
-    const auto log = openLog(bag(), config);
-    return measureRegistrationBias(*log, truth, config);
+    const auto log = openLog(bag(), config.input, config.sensor);
+    return measureRegistrationBias(*log, truth, config.odometry);
   }
   static Trajectory truth() { return readTum(simFile(sim::kLidarTruthFile)); }
 };

@@ -20,6 +20,7 @@
 #include "export/point_cloud_writers.h"
 #include "export/report_markdown.h"
 #include "export_fixtures.h"
+#include "pipeline/run_report.h"
 #include "support/temp_dir.h"
 
 namespace storey {
@@ -69,7 +70,8 @@ TEST(Pcd, PclReadsTheBinaryFile) {
   EXPECT_EQ(blob.width * blob.height, 300u);
   std::vector<std::string> names;
   for (const auto& field : blob.fields) names.push_back(field.name);
-  EXPECT_EQ(names, (std::vector<std::string>{"x", "y", "z", "intensity", "time", "keyframe", "storey"}));
+  EXPECT_EQ(names,
+            (std::vector<std::string>{"x", "y", "z", "intensity", "time", "keyframe", "storey"}));
 
   pcl::PointCloud<pcl::PointXYZI> xyzi;
   ASSERT_EQ(pcl::io::loadPCDFile(dir.file("map.pcd"), xyzi), 0);
@@ -134,34 +136,38 @@ TEST(StoreysJson, ReadByCoreEval) {
 }
 
 TEST(ReportMarkdown, TablesFromTheRunReport) {
-  MapOutputs outputs;
-  outputs.storeys = sampleStoreys();
-  outputs.map_points = 1800;
-  const std::string report = addMapToReport(
+  // The storey table as the run report carries it (RunReportBuilder::setMap).
+  RunReportBuilder builder{Config{}};
+  MapStage map_stage;
+  map_stage.storeys.storeys = sampleStoreys();
+  builder.setMap(map_stage);
+  nlohmann::json j = builder.json();
+  j.update(nlohmann::json::parse(
       R"({"storey_version": "0.1.0", "input": {"log": "x.bag", "scans_read": 10},
           "odometry": {"scans": 10, "timing_ms": {"total_per_scan": {"median": 12.5, "p95": 20, "mean": 13, "max": 30}}},
           "backend": {"timing_ms_per_keyframe": {"srp_extraction": {"median": 9.5, "p95": 20, "mean": 11, "max": 40},
                                                  "final_optimisation": 106.7}},
           "end_point_drift": {"dX_m": 0.01, "dY_m": 0.02, "dZ_m": -0.03, "dXYZ_m": 0.037,
                               "dYaw_rad": 0.01745329, "path_length_m": 100},
-          "warnings": ["something to check"]})",
-      outputs);
-  const nlohmann::json j = nlohmann::json::parse(report);
+          "warnings": ["something to check"]})"));
+  const std::string report = j.dump();
   EXPECT_EQ(j["storeys"].size(), 2u);
   EXPECT_FALSE(j["storeys"][0].contains("footprint"));
   const std::string md = reportMarkdown(report);
   EXPECT_NE(md.find("## Table I"), std::string::npos);
   EXPECT_NE(md.find("| 0.010 | 0.020 | -0.030 | 0.037 | 1.000 |"), std::string::npos) << md;
   EXPECT_NE(md.find("| odometry: total_per_scan | 12.50 | 20.00 |"), std::string::npos) << md;
-  EXPECT_NE(md.find("| back end, per keyframe: srp_extraction | 9.50 | 20.00 |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| back end, per keyframe: srp_extraction | 9.50 | 20.00 |"), std::string::npos)
+      << md;
   EXPECT_NE(md.find("whole graph: 106.7 ms"), std::string::npos) << md;
-  EXPECT_NE(md.find("| 0 | -0.610 | 2.720 | 3.330 | 3.600 | 120.5 | 1000 |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| 0 | -0.610 | 2.720 | 3.330 | 3.600 | 120.5 | 1000 |"), std::string::npos)
+      << md;
   EXPECT_NE(md.find("| 1 | 2.990 | – | – | – |"), std::string::npos) << md;
   EXPECT_NE(md.find("- something to check"), std::string::npos);
-  EXPECT_THROW(reportMarkdown("[1, 2]"), Error);
+  EXPECT_THROW(reportMarkdown(std::string("[1, 2]")), Error);
 }
 
-TEST(ExportMap, WritesTheFolderAndRemovesStaleStoreys) {
+TEST(MapFiles, WritesTheFolderAndRemovesStaleStoreys) {
   test::TempDir dir;
   MapCloud cloud = test::sampleCloud(400);
   StoreySegmentation seg;
@@ -169,10 +175,11 @@ TEST(ExportMap, WritesTheFolderAndRemovesStaleStoreys) {
   std::filesystem::create_directories(dir.path() / "storeys");
   dir.write("storeys/storey_07.las", "old");
   dir.write("storeys/notes.txt", "mine");
-  const std::vector<std::string> files = exportMap(cloud, seg, 0.02, dir.path().string());
-  EXPECT_EQ(files, (std::vector<std::string>{"map.las", "map.ply", "map.pcd", "storeys/storey_00.las",
-                                             "storeys/storey_00.ply", "storeys/storey_01.las",
-                                             "storeys/storey_01.ply", "storeys.json"}));
+  const std::vector<std::string> files = writeMapFiles(dir.path().string(), cloud, seg, 0.02);
+  EXPECT_EQ(files,
+            (std::vector<std::string>{"map.las", "map.ply", "map.pcd", "storeys/storey_00.las",
+                                      "storeys/storey_00.ply", "storeys/storey_01.las",
+                                      "storeys/storey_01.ply", "storeys.json"}));
   EXPECT_FALSE(std::filesystem::exists(dir.path() / "storeys/storey_07.las"));
   EXPECT_TRUE(std::filesystem::exists(dir.path() / "storeys/notes.txt"));
   std::size_t storey1 = 0;

@@ -8,6 +8,7 @@
 
 #include "common/error.h"
 #include "common/log.h"
+#include "config/config.h"
 #include "io/log_reader.h"
 #include "io/log_summary.h"
 #include "io/rosbag_structure.h"
@@ -24,7 +25,7 @@ constexpr std::int64_t kMs = 1'000'000;
 /// Opens and reads the whole log; returns the error message ("" when it read fine).
 std::string readError(const std::string& path, const Config& config = Config{}) {
   try {
-    const auto reader = openLog(path, config);
+    const auto reader = openLog(path, config.input, config.sensor);
     LogMessage m;
     while (reader->next(m)) {
     }

@@ -11,6 +11,7 @@
 
 #include "common/error.h"
 #include "common/log.h"
+#include "config/config.h"
 #include "io/log_reader.h"
 #include "io/message_sequencer.h"
 #include "io/point_cloud_to_scan.h"
@@ -35,7 +36,7 @@ struct ReadResult {
 
 ReadResult readAll(const std::string& path, const Config& config = Config{}) {
   ReadResult out;
-  const auto reader = openLog(path, config);
+  const auto reader = openLog(path, config.input, config.sensor);
   out.description = reader->describe();
   LogMessage m;
   const std::int64_t offset_ns = secondsToNs(config.sensor.time_offset_lidar_to_imu);
@@ -128,7 +129,7 @@ TEST_F(BagReader, VelodyneBagDecodedExactlyAndInTimeOrder) {
   // Progress by record time: from 0 to 1, never backwards.
   std::size_t imu_seen = 0, scans_seen = 0;
   LogMessage m;
-  const auto reader = openLog(file, Config{});
+  const auto reader = openLog(file, InputConfig{}, SensorConfig{});
   EXPECT_EQ(reader->progress(), 0.0);
   double progress = 0.0;
   while (reader->next(m)) {
@@ -327,7 +328,7 @@ TEST_F(BagReader, TimeOffsetOrdersScansInTheImuClock) {
   EXPECT_TRUE(std::is_sorted(r.order_keys.begin(), r.order_keys.end()));
   // IMU at 0, 5, 10 ms come before the first scan (12.5 ms in the IMU clock).
   std::size_t imu_before = 0;
-  const auto reader = openLog(file, config);
+  const auto reader = openLog(file, config.input, config.sensor);
   LogMessage m;
   while (reader->next(m) && !std::holds_alternative<Scan>(m)) ++imu_before;
   EXPECT_EQ(imu_before, 3u);

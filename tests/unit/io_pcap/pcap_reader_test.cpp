@@ -9,6 +9,7 @@
 #include <iomanip>
 
 #include "common/error.h"
+#include "config/config.h"
 #include "io/log_format.h"
 #include "io/log_reader.h"
 #include "io/log_summary.h"
@@ -26,7 +27,8 @@ class PcapReader : public ::testing::Test {
  protected:
   void SetUp() override {
     dir_ = fs::temp_directory_path() /
-           ("storey_pcap_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+           ("storey_pcap_" +
+            std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
     fs::remove_all(dir_);
     fs::create_directories(dir_);
   }
@@ -44,8 +46,10 @@ class PcapReader : public ::testing::Test {
     Read out;
     LogMessage m;
     while (reader.next(m)) {
-      if (auto* s = std::get_if<Scan>(&m)) out.scans.push_back(std::move(*s));
-      else out.imu.push_back(std::get<ImuSample>(m));
+      if (auto* s = std::get_if<Scan>(&m))
+        out.scans.push_back(std::move(*s));
+      else
+        out.imu.push_back(std::get<ImuSample>(m));
     }
     out.stats = reader.stats();
     out.rotation_hz = reader.rotationHz();
@@ -89,10 +93,11 @@ TEST_F(PcapReader, CleanCaptureIsCutIntoRevolutionsWithFiringTimes) {
     ASSERT_LT(p.ring, 16);
   }
   EXPECT_FLOAT_EQ(scan.points[0].time, 0.0f);
-  EXPECT_NEAR(scan.points[1].time, 2.304e-6, 1e-9);    // laser 1
-  EXPECT_NEAR(scan.points[16].time, 55.296e-6, 1e-9);  // sequence 2, laser 0
-  EXPECT_NEAR(scan.points[32].time, 110.592e-6, 1e-9); // block 1
-  for (std::size_t i = 1; i < scan.points.size(); ++i) ASSERT_GE(scan.points[i].time, scan.points[i - 1].time);
+  EXPECT_NEAR(scan.points[1].time, 2.304e-6, 1e-9);     // laser 1
+  EXPECT_NEAR(scan.points[16].time, 55.296e-6, 1e-9);   // sequence 2, laser 0
+  EXPECT_NEAR(scan.points[32].time, 110.592e-6, 1e-9);  // block 1
+  for (std::size_t i = 1; i < scan.points.size(); ++i)
+    ASSERT_GE(scan.points[i].time, scan.points[i - 1].time);
   // Ring 0 is the lowest laser (-15 deg), ring 15 the highest.
   for (const auto& p : scan.points) {
     const double elevation = std::asin(p.p.z() / p.p.norm()) * 180.0 / M_PI;
@@ -125,17 +130,20 @@ TEST_F(PcapReader, ForeignTrafficIsSkippedAndCounted) {
   for (std::size_t i = 0; i < records.size(); ++i) {
     mixed.push_back(records[i]);
     if (i % 10 == 0) {
-      mixed.push_back({records[i].t_ns, test::udpFrame(5353, 53, std::vector<std::uint8_t>(40, 7)), 0});
+      mixed.push_back(
+          {records[i].t_ns, test::udpFrame(5353, 53, std::vector<std::uint8_t>(40, 7)), 0});
       mixed.push_back({records[i].t_ns, test::tcpFrame(), 0});
       mixed.push_back({records[i].t_ns, test::arpFrame(), 0});
       // A 1206-byte payload on another port is not Velodyne data either.
-      mixed.push_back({records[i].t_ns, test::udpFrame(9000, 9000, std::vector<std::uint8_t>(1206, 1)), 0});
+      mixed.push_back(
+          {records[i].t_ns, test::udpFrame(9000, 9000, std::vector<std::uint8_t>(1206, 1)), 0});
     }
   }
   test::writePcap(file("mixed.pcap"), mixed);
   const Read r = readAll(file("mixed.pcap"));
   ASSERT_EQ(r.scans.size(), clean.scans.size());
-  for (std::size_t i = 0; i < r.scans.size(); ++i) EXPECT_EQ(r.scans[i].points.size(), clean.scans[i].points.size());
+  for (std::size_t i = 0; i < r.scans.size(); ++i)
+    EXPECT_EQ(r.scans[i].points.size(), clean.scans[i].points.size());
   const std::int64_t n = static_cast<std::int64_t>((records.size() + 9) / 10);
   EXPECT_EQ(dropped(r, kDropNotVelodyne), 2 * n);
   EXPECT_EQ(dropped(r, "pcap_record_not_udp"), n);
@@ -175,7 +183,7 @@ TEST_F(PcapReader, OutOfOrderPacketsAreReorderedOrDropped) {
   auto records = test::vlp16Capture(0.25, 10.0, 1'000'000);
   test::writePcap(file("ordered.pcap"), records);
   const Read ordered = readAll(file("ordered.pcap"));
-  std::swap(records[30], records[31]);          // reordered within the buffer
+  std::swap(records[30], records[31]);                // reordered within the buffer
   records.insert(records.begin() + 50, records[49]);  // a duplicate
   auto late = records[60];
   records.erase(records.begin() + 60);
@@ -226,7 +234,7 @@ TEST_F(PcapReader, NothingUsableIsAClearError) {
   // A capture without IMU cannot be run on: the error names the way out.
   test::writePcap(file("noimu.pcap"), test::vlp16Capture(0.1, 10.0, 1'000'000));
   try {
-    openLog(file("noimu.pcap"), Config{});
+    openLog(file("noimu.pcap"), InputConfig{}, SensorConfig{});
     FAIL() << "no error";
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("imu_csv"), std::string::npos) << e.what();
@@ -248,12 +256,13 @@ TEST_F(PcapReader, DualReturnPairsShareTheirFiringTime) {
     }
     ASSERT_EQ(packet.returns.size(), 12u * 32u);
     for (std::size_t i = 0; i < 32; ++i) {
-      const auto& first = packet.returns[i + 2 * 32];      // block 2 (pair 1)
-      const auto& other = packet.returns[i + 3 * 32];      // block 3 (pair 1)
+      const auto& first = packet.returns[i + 2 * 32];  // block 2 (pair 1)
+      const auto& other = packet.returns[i + 3 * 32];  // block 3 (pair 1)
       EXPECT_FALSE(first.second_return);
       EXPECT_TRUE(other.second_return);
       EXPECT_DOUBLE_EQ(first.time_offset_s, other.time_offset_s);
-      EXPECT_NEAR(first.time_offset_s, 110.592e-6 + (i / 16) * 55.296e-6 + (i % 16) * 2.304e-6, 1e-12);
+      EXPECT_NEAR(first.time_offset_s, 110.592e-6 + (i / 16) * 55.296e-6 + (i % 16) * 2.304e-6,
+                  1e-12);
       EXPECT_FLOAT_EQ(first.azimuth_deg, other.azimuth_deg);
       EXPECT_NEAR(other.distance, 7.0, 1e-3);
     }
@@ -290,7 +299,7 @@ TEST_F(PcapReader, ImuCsvIsMergedInTimeOrder) {
   std::int64_t last = 0;
   while (reader.next(m)) {
     const std::int64_t t = std::holds_alternative<Scan>(m) ? std::get<Scan>(m).stamp_ns
-                                                          : std::get<ImuSample>(m).stamp_ns;
+                                                           : std::get<ImuSample>(m).stamp_ns;
     EXPECT_GE(t, last);
     last = t;
   }
@@ -298,16 +307,18 @@ TEST_F(PcapReader, ImuCsvIsMergedInTimeOrder) {
 
 TEST_F(PcapReader, SummaryNamesSensorRateAndDrops) {
   auto records = test::vlp16Capture(0.25, 10.0, 1'000'000);
-  records.push_back({records.back().t_ns, test::udpFrame(5353, 53, std::vector<std::uint8_t>(40, 7)), 0});
+  records.push_back(
+      {records.back().t_ns, test::udpFrame(5353, 53, std::vector<std::uint8_t>(40, 7)), 0});
   test::writePcap(file("s.pcap"), records);
-  const LogSummary s = summarizeLog(file("s.pcap"), Config{});
+  const LogSummary s = summarizeLog(file("s.pcap"), InputConfig{}, SensorConfig{});
   EXPECT_EQ(s.format, "Velodyne pcap");
   ASSERT_FALSE(s.topics.empty());
   EXPECT_EQ(s.topics.front().type, "scan");
   EXPECT_GE(s.topics.front().count, 3);
   EXPECT_EQ(s.dropped.at(kDropNotVelodyne), 1);
   bool saw_rotation = false;
-  for (const auto& [k, v] : s.properties) saw_rotation = saw_rotation || (k == "rotation" && v.rfind("10.0", 0) == 0);
+  for (const auto& [k, v] : s.properties)
+    saw_rotation = saw_rotation || (k == "rotation" && v.rfind("10.0", 0) == 0);
   EXPECT_TRUE(saw_rotation);
   EXPECT_FALSE(s.input_problem.empty());  // no IMU
 }

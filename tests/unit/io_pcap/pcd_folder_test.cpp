@@ -9,6 +9,7 @@
 #include <fstream>
 
 #include "common/error.h"
+#include "config/config.h"
 #include "io/log_format.h"
 #include "io/log_reader.h"
 #include "io/log_summary.h"
@@ -39,16 +40,27 @@ void writePcd(const std::string& path, const std::vector<Field>& fields,
   for (const auto& f : fields) out << ' ' << f.type;
   out << "\nCOUNT";
   for (std::size_t i = 0; i < fields.size(); ++i) out << " 1";
-  out << "\nWIDTH " << points.size() << "\nHEIGHT 1\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS " << points.size()
-      << "\nDATA " << data << "\n";
+  out << "\nWIDTH " << points.size() << "\nHEIGHT 1\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS "
+      << points.size() << "\nDATA " << data << "\n";
   auto encode = [](const Field& f, double v, std::vector<std::uint8_t>& bytes) {
     std::uint8_t raw[8];
-    if (f.type == 'F' && f.size == 4) { float x = static_cast<float>(v); std::memcpy(raw, &x, 4); }
-    else if (f.type == 'F') { std::memcpy(raw, &v, 8); }
-    else if (f.type == 'U' && f.size == 1) { raw[0] = static_cast<std::uint8_t>(v); }
-    else if (f.type == 'U' && f.size == 2) { auto x = static_cast<std::uint16_t>(v); std::memcpy(raw, &x, 2); }
-    else if (f.type == 'U' && f.size == 4) { auto x = static_cast<std::uint32_t>(v); std::memcpy(raw, &x, 4); }
-    else { auto x = static_cast<std::uint64_t>(v); std::memcpy(raw, &x, 8); }
+    if (f.type == 'F' && f.size == 4) {
+      float x = static_cast<float>(v);
+      std::memcpy(raw, &x, 4);
+    } else if (f.type == 'F') {
+      std::memcpy(raw, &v, 8);
+    } else if (f.type == 'U' && f.size == 1) {
+      raw[0] = static_cast<std::uint8_t>(v);
+    } else if (f.type == 'U' && f.size == 2) {
+      auto x = static_cast<std::uint16_t>(v);
+      std::memcpy(raw, &x, 2);
+    } else if (f.type == 'U' && f.size == 4) {
+      auto x = static_cast<std::uint32_t>(v);
+      std::memcpy(raw, &x, 4);
+    } else {
+      auto x = static_cast<std::uint64_t>(v);
+      std::memcpy(raw, &x, 8);
+    }
     bytes.insert(bytes.end(), raw, raw + f.size);
   };
   if (data == "ascii") {
@@ -61,7 +73,8 @@ void writePcd(const std::string& path, const std::vector<Field>& fields,
     for (const auto& p : points) {
       for (std::size_t i = 0; i < fields.size(); ++i) encode(fields[i], p[i], bytes);
     }
-    out.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
+    out.write(reinterpret_cast<const char*>(bytes.data()),
+              static_cast<std::streamsize>(bytes.size()));
   } else {  // binary_compressed: field-major, LZF with literal runs only
     std::vector<std::uint8_t> soa;
     for (std::size_t i = 0; i < fields.size(); ++i) {
@@ -73,7 +86,8 @@ void writePcd(const std::string& path, const std::vector<Field>& fields,
       lzf.push_back(static_cast<std::uint8_t>(run - 1));
       lzf.insert(lzf.end(), soa.begin() + at, soa.begin() + at + run);
     }
-    const std::uint32_t sizes[2] = {static_cast<std::uint32_t>(lzf.size()), static_cast<std::uint32_t>(soa.size())};
+    const std::uint32_t sizes[2] = {static_cast<std::uint32_t>(lzf.size()),
+                                    static_cast<std::uint32_t>(soa.size())};
     out.write(reinterpret_cast<const char*>(sizes), 8);
     out.write(reinterpret_cast<const char*>(lzf.data()), static_cast<std::streamsize>(lzf.size()));
   }
@@ -100,7 +114,8 @@ class PcdFolder : public ::testing::Test {
  protected:
   void SetUp() override {
     dir_ = fs::temp_directory_path() /
-           ("storey_pcd_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+           ("storey_pcd_" +
+            std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
     fs::remove_all(dir_);
     fs::create_directories(dir_);
   }
@@ -114,7 +129,7 @@ class PcdFolder : public ::testing::Test {
   fs::path dir_;
 };
 
-const std::vector<Field> kXyzirt = {{"x", 'F', 4}, {"y", 'F', 4}, {"z", 'F', 4},
+const std::vector<Field> kXyzirt = {{"x", 'F', 4},         {"y", 'F', 4},    {"z", 'F', 4},
                                     {"intensity", 'F', 4}, {"ring", 'U', 2}, {"time", 'F', 4}};
 
 TEST_F(PcdFolder, ThreeEncodingsDecodeToTheSameCloud) {
@@ -142,13 +157,15 @@ TEST_F(PcdFolder, StampsFromFileNamesAndPointTimesFromTheTimeField) {
   }
   writeImu(path("imu.csv"), 1673400471.3, 1673400471.9);
   EXPECT_EQ(detectLogFormat(dir_.string()), LogFormat::kPcdFolder);
-  const auto reader = openLog(dir_.string(), Config{});
+  const auto reader = openLog(dir_.string(), InputConfig{}, SensorConfig{});
   std::vector<Scan> scans;
   int imu = 0;
   LogMessage m;
   while (reader->next(m)) {
-    if (auto* s = std::get_if<Scan>(&m)) scans.push_back(std::move(*s));
-    else ++imu;
+    if (auto* s = std::get_if<Scan>(&m))
+      scans.push_back(std::move(*s));
+    else
+      ++imu;
   }
   ASSERT_EQ(scans.size(), 3u);
   EXPECT_EQ(scans[0].stamp_ns, 1673400471500000000LL);
@@ -160,7 +177,8 @@ TEST_F(PcdFolder, StampsFromFileNamesAndPointTimesFromTheTimeField) {
 }
 
 TEST_F(PcdFolder, ListFileGivesTimesAndAzimuthGivesPointTimes) {
-  const std::vector<Field> xyzi = {{"x", 'F', 4}, {"y", 'F', 4}, {"z", 'F', 4}, {"intensity", 'F', 4}};
+  const std::vector<Field> xyzi = {
+      {"x", 'F', 4}, {"y", 'F', 4}, {"z", 'F', 4}, {"intensity", 'F', 4}};
   auto scan = cylinderScan(false);
   for (auto& p : scan) p.resize(4);
   writePcd(path("a.pcd"), xyzi, scan, "ascii");
@@ -169,7 +187,7 @@ TEST_F(PcdFolder, ListFileGivesTimesAndAzimuthGivesPointTimes) {
   writeImu(path("my_imu.csv"), 99.9, 100.3);
   Config config;
   config.input.imu_csv = path("my_imu.csv");
-  const auto reader = openLog(dir_.string(), config);
+  const auto reader = openLog(dir_.string(), config.input, config.sensor);
   std::vector<Scan> scans;
   LogMessage m;
   while (reader->next(m)) {
@@ -200,7 +218,7 @@ TEST_F(PcdFolder, ErrorsNameThePlace) {
   std::ofstream(path("timestamps.txt")) << "000001.pcd 5.0\n000002.pcd 5.1\n";
   fs::resize_file(path("000002.pcd"), fs::file_size(path("000002.pcd")) - 100);
   writeImu(path("imu.csv"), 4.9, 5.3);
-  const auto reader = openLog(dir_.string(), Config{});
+  const auto reader = openLog(dir_.string(), InputConfig{}, SensorConfig{});
   LogMessage m;
   try {
     while (reader->next(m)) {
@@ -213,7 +231,7 @@ TEST_F(PcdFolder, ErrorsNameThePlace) {
   // Without IMU a run is refused, naming the way out.
   fs::remove(path("imu.csv"));
   try {
-    openLog(dir_.string(), Config{});
+    openLog(dir_.string(), InputConfig{}, SensorConfig{});
     FAIL() << "no error";
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("imu.csv"), std::string::npos) << e.what();
@@ -247,12 +265,12 @@ TEST_F(PcdFolder, RealHdl32eScans) {
   writeImu(path("imu.csv"), 9.9, 10.3);
   Config config;
   config.sensor.lidar_model = LidarModel::kHdl32e;
-  const LogSummary summary = summarizeLog(dir_.string(), config);
+  const LogSummary summary = summarizeLog(dir_.string(), config.input, config.sensor);
   EXPECT_EQ(summary.format, "PCD folder");
   ASSERT_EQ(summary.topics.size(), 2u);
   EXPECT_EQ(summary.topics[0].count, 2);
   EXPECT_TRUE(summary.input_problem.empty()) << summary.input_problem;
-  const auto reader = openLog(dir_.string(), config);
+  const auto reader = openLog(dir_.string(), config.input, config.sensor);
   std::vector<Scan> scans;
   LogMessage m;
   while (reader->next(m)) {

@@ -20,7 +20,7 @@
 #include <vector>
 
 #include "common/error.h"
-#include "config/calibration.h"
+#include "config/config.h"
 #include "eval/association.h"
 #include "eval/ate.h"
 #include "io/imu_csv.h"
@@ -284,8 +284,8 @@ CaptureComparison compareCaptureWithBag(const std::string& sim_dir) {
   applyCalibrationFile(config, sim_dir + "/" + sim::kCalibrationFile);
   config.input.min_range = 0.0;
   config.input.max_range = 1000.0;
-  const auto bag_reader = openLog(sim_dir + "/" + sim::kBagFile, config);
-  VelodynePcapOptions options = velodynePcapOptions(config);
+  const auto bag_reader = openLog(sim_dir + "/" + sim::kBagFile, config.input, config.sensor);
+  VelodynePcapOptions options = velodynePcapOptions(config.input, config.sensor);
   options.min_range = 0.0;
   options.imu_csv = sim_dir + "/" + sim::kImuCsvFile;
   options.drop_scans_beyond_imu = false;

@@ -32,13 +32,13 @@ TEST_P(MapBuilderTest, VoxelCentroidIntensityMeanFirstTimeAndKeyframe) {
   config.spill_to_disk = GetParam();
   MapBuilder builder(config);
   // Keyframe 0: two points in one voxel, one in another.
-  builder.addKeyframeScan(0, makeScan(1'000'000'000, {point(1.01f, 0.01f, 0.01f, 10, 0.02f),
-                                                      point(1.03f, 0.03f, 0.03f, 20, -0.01f),
-                                                      point(2.05f, 0.05f, 0.05f, 5, 0.0f)}));
+  builder.addScan(0, makeScan(1'000'000'000, {point(1.01f, 0.01f, 0.01f, 10, 0.02f),
+                                              point(1.03f, 0.03f, 0.03f, 20, -0.01f),
+                                              point(2.05f, 0.05f, 0.05f, 5, 0.0f)}));
   // Keyframe 3 (indices need not be contiguous), sensor moved +1 m in x: its
   // point (0.02, 0.02, 0.02) lands in the first voxel in the world.
-  builder.addKeyframeScan(3, makeScan(2'000'000'000, {point(0.05f, 0.05f, 0.05f, 40, 0.0f)}));
-  EXPECT_EQ(builder.stats().keyframes, 2);
+  builder.addScan(3, makeScan(2'000'000'000, {point(0.05f, 0.05f, 0.05f, 40, 0.0f)}));
+  EXPECT_EQ(builder.stats().scans, 2);
   EXPECT_EQ(builder.stats().points_in, 4);
   EXPECT_EQ(builder.stats().points_stored, 3);  // per-scan voxels: 2 + 1
 
@@ -65,7 +65,7 @@ TEST_P(MapBuilderTest, PosesAreAppliedAtBuildTimeAndCanChange) {
   config.voxel_size = 0.02;
   config.spill_to_disk = GetParam();
   MapBuilder builder(config);
-  builder.addKeyframeScan(0, makeScan(0, {point(1.0f, 0.0f, 0.0f, 1, 0)}));
+  builder.addScan(0, makeScan(0, {point(1.0f, 0.0f, 0.0f, 1, 0)}));
   const Pose yaw90(Eigen::Quaterniond(Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitZ())),
                    Eigen::Vector3d(0.0, 0.0, 2.0));
   MapCloud map = builder.build({yaw90});
@@ -76,7 +76,7 @@ TEST_P(MapBuilderTest, PosesAreAppliedAtBuildTimeAndCanChange) {
   map = builder.build({Pose()});
   EXPECT_NEAR(map.positions[0].x(), 1.0, 0.011);
   // Adding after a build keeps working (the store is appended to).
-  builder.addKeyframeScan(1, makeScan(0, {point(5.0f, 0.0f, 0.0f, 1, 0)}));
+  builder.addScan(1, makeScan(0, {point(5.0f, 0.0f, 0.0f, 1, 0)}));
   map = builder.build({Pose(), Pose()});
   ASSERT_EQ(map.size(), 2u);
   EXPECT_NEAR(map.positions[1].x(), 5.0, 0.011);
@@ -87,14 +87,14 @@ TEST_P(MapBuilderTest, DropsFarAndNonFinitePointsAndRejectsBadInput) {
   config.max_range = 10.0;
   config.spill_to_disk = GetParam();
   MapBuilder builder(config);
-  builder.addKeyframeScan(
+  builder.addScan(
       0, makeScan(0, {point(11.0f, 0, 0, 1, 0), point(NAN, 0, 0, 1, 0), point(9.0f, 0, 0, 1, 0)}));
   EXPECT_EQ(builder.stats().points_beyond_range, 1);
   EXPECT_EQ(builder.stats().points_non_finite, 1);
   EXPECT_EQ(builder.stats().points_stored, 1);
-  EXPECT_THROW(builder.addKeyframeScan(0, makeScan(0, {})), Error);   // twice
-  EXPECT_THROW(builder.addKeyframeScan(-1, makeScan(0, {})), Error);  // negative
-  builder.addKeyframeScan(5, makeScan(0, {}));
+  EXPECT_THROW(builder.addScan(0, makeScan(0, {})), Error);   // twice
+  EXPECT_THROW(builder.addScan(-1, makeScan(0, {})), Error);  // negative
+  builder.addScan(5, makeScan(0, {}));
   EXPECT_THROW(builder.build({Pose()}), Error);  // keyframe 5 has no pose
   EXPECT_EQ(builder.build(std::vector<Pose>(6)).size(), 1u);
   MapConfig bad;
@@ -113,7 +113,7 @@ TEST_P(MapBuilderTest, DenseSurfaceIsReducedToOnePointPerVoxel) {
     for (int i = 0; i < 200; ++i)
       for (int j = 0; j < 200; ++j)
         points.push_back(point(3.0f, 0.0025f + 0.005f * i, 0.0025f + 0.005f * j, 1, 0));
-    builder.addKeyframeScan(kf, makeScan(kf, points));
+    builder.addScan(kf, makeScan(kf, points));
   }
   EXPECT_EQ(builder.stats().points_in, 80000);
   EXPECT_LE(builder.stats().points_stored, 2 * 51 * 51 * 2);
@@ -124,7 +124,9 @@ TEST_P(MapBuilderTest, DenseSurfaceIsReducedToOnePointPerVoxel) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Storage, MapBuilderTest, ::testing::Values(true, false),
-                         [](const auto& param_info) { return param_info.param ? "Disk" : "Memory"; });
+                         [](const auto& param_info) {
+                           return param_info.param ? "Disk" : "Memory";
+                         });
 
 }  // namespace
 }  // namespace storey

@@ -9,7 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "common/atomic_file.h"
-#include "config/calibration.h"
+#include "config/config.h"
 #include "eval/evaluation.h"
 #include "eval/storey_error.h"
 #include "pipeline/pipeline.h"
@@ -92,7 +92,7 @@ TEST_F(MapEndToEnd, SwitchesBackEndOffStoreysOffAndMapOff) {
   const PipelineResult r = runPipeline(bag(), c, out);
   ASSERT_TRUE(r.map);
   EXPECT_GE(r.keyframes.size(), 5u);
-  EXPECT_TRUE(r.planes_json.empty());
+  EXPECT_FALSE(r.planes);
   EXPECT_FALSE(fs::exists(out + "/planes.json")) << "a stale planes.json would be misleading";
   EXPECT_TRUE(fs::exists(out + "/map.las"));
   EXPECT_TRUE(r.storeys.empty());

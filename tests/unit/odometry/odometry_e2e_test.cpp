@@ -8,7 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "common/error.h"
-#include "config/calibration.h"
+#include "config/config.h"
 #include "eval/association.h"
 #include "eval/ate.h"
 #include "odometry/odometry.h"
@@ -34,8 +34,7 @@ RunErrors simulateAndRun(const sim::BuildingSpec& spec) {
   options.compress = false;
   sim::simulate(spec, options, sim_dir);
   const Config config = loadRunConfig("", sim_dir + "/" + sim::kCalibrationFile);
-  const PipelineResult result =
-      runPipeline(sim_dir + "/" + sim::kBagFile, config, dir.file("out"));
+  const PipelineResult result = runPipeline(sim_dir + "/" + sim::kBagFile, config, dir.file("out"));
   const Trajectory gt = readTum(sim_dir + "/" + sim::kLidarTruthFile);
 
   RunErrors errors;
@@ -93,7 +92,7 @@ TEST(OdometryEndToEnd, ImuUpsideDownTurnedAt200Hz) {
 
 TEST(OdometryEndToEnd, MovingStartIsAClearError) {
   Config config;
-  LidarInertialOdometry odometry(config, nullptr);
+  LidarInertialOdometry odometry(config.odometry, config.sensor);
   for (int i = 0; i < 800; ++i) {  // 2 s of a sensor spinning at 1 rad/s
     ImuSample s;
     s.stamp_ns = 1'000'000'000LL + i * 2'500'000LL;

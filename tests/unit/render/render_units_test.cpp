@@ -84,9 +84,9 @@ TEST(RenderPatches, HullsAreMovedByTheKeyframePoseAndColourTheirPoints) {
   ASSERT_EQ(set.patches.size(), 8u);
   for (const render::WorldPatch& p : set.patches) {
     // Every world hull vertex lies on the true plane (keyframe 1 is turned 90 degrees).
-    const render::SrpPlane& plane = run.planes[static_cast<std::size_t>(p.plane_index)];
+    const GlobalPlane& plane = run.planes[static_cast<std::size_t>(p.plane_index)];
     for (const auto& v : p.hull)
-      EXPECT_NEAR(plane.normal.dot(v), plane.distance, 1e-6) << p.plane_id;
+      EXPECT_NEAR(plane.normal_world.dot(v), plane.distance_world, 1e-6) << p.plane_id;
     EXPECT_EQ(p.hull.size(), 4u);
   }
   const std::vector<int> srp = render::srpOfPoints(run.map, set.patches, 0.05);

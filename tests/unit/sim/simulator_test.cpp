@@ -13,7 +13,7 @@
 #include <sstream>
 
 #include "common/error.h"
-#include "config/calibration.h"
+#include "config/config.h"
 #include "sim/world.h"
 
 namespace storey::sim {

@@ -16,14 +16,16 @@ constexpr double kLength = 14.0, kWidth = 8.0;  // building footprint [m]
 constexpr double kStairX0 = 8.5, kStairX1 = 13.5, kStairY0 = 6.5;
 constexpr double kSlab = 0.25, kSpacing = 0.04, kNoise = 0.01, kSensorHeight = 0.6;
 
-bool inStairwell(double x, double y) { return x >= kStairX0 && x <= kStairX1 && y >= kStairY0; }
+bool inStairwell(double x, double y) {
+  return x >= kStairX0 && x <= kStairX1 && y >= kStairY0;
+}
 
 struct Building {
   std::vector<double> floors{0.0, 3.1, 6.4};
   MapCloud map;
   std::vector<Eigen::Vector3d> keyframes;
-  std::vector<bool> truly_stairs;  ///< points of the stair flights (treads and risers)
-  std::vector<std::size_t> seen_from;      ///< storey whose keyframes see the point
+  std::vector<bool> truly_stairs;      ///< points of the stair flights (treads and risers)
+  std::vector<std::size_t> seen_from;  ///< storey whose keyframes see the point
   std::vector<int> seen_side;  ///< +1: seen from above (floors), -1: from below (ceilings), 0: any
   std::vector<std::size_t> keyframe_storey;
   std::size_t current = 0;
@@ -31,7 +33,8 @@ struct Building {
 
   void add(const Eigen::Vector3d& p, bool stairs = false, int side = 0) {
     std::normal_distribution<double> noise(0.0, kNoise);
-    map.positions.emplace_back((p + Eigen::Vector3d(noise(rng), noise(rng), noise(rng))).cast<float>());
+    map.positions.emplace_back(
+        (p + Eigen::Vector3d(noise(rng), noise(rng), noise(rng))).cast<float>());
     map.intensity.push_back(50.0f);
     map.time.push_back(0.0);
     map.keyframe.push_back(-1);
@@ -67,7 +70,8 @@ struct Building {
       wallX(kLength, f, ceiling);
       wallY(0, f, ceiling);
       wallY(kWidth, f, ceiling);
-      horizontal(f + 0.45, 2.0, 3.6, 1.0, 1.8, false, +1);  // a low table (1.3 m^2), seen from above
+      horizontal(f + 0.45, 2.0, 3.6, 1.0, 1.8, false,
+                 +1);  // a low table (1.3 m^2), seen from above
       // Walk along the corridor, then (below the top) up the stairs.
       for (double x = 1.0; x <= 8.0; x += 1.0) {
         keyframes.push_back({x, 7.2, f + kSensorHeight});
@@ -180,11 +184,11 @@ TEST(StoreySegmentation, NoFloorGivesNoStoreys) {
 TEST(StoreySegmentation, ConfigIsValidated) {
   StoreysConfig c;
   c.voxel_size = 0;
-  EXPECT_THROW(validateStoreysConfig(c), Error);
+  EXPECT_THROW(c.validate(), Error);
   c = {};
   c.max_clear_height = 1.0;
-  EXPECT_THROW(validateStoreysConfig(c), Error);
-  EXPECT_NO_THROW(validateStoreysConfig({}));
+  EXPECT_THROW(c.validate(), Error);
+  EXPECT_NO_THROW(StoreysConfig{}.validate());
 }
 
 TEST(Footprint, AlphaShapeOfARectangleHasItsArea) {

@@ -1,4 +1,4 @@
-#include "config/sensor_yaml.h"
+#include "io/sensor_yaml.h"
 
 #include <cmath>
 #include <sstream>
@@ -37,9 +37,9 @@ void readImuNoise(YamlSection& section, ImuNoise& imu) {
   for (const Field& f : fields) {
     section.read(f.key, *f.value);
     const bool is_density = f.value != &imu.rate_hz && f.value != &imu.gravity;
-    if (section.has(f.key) && is_density && !(*f.value >= 0.0))
-      section.fail(f.key, "must be >= 0");
-    if (section.has(f.key) && !is_density && !(*f.value > 0.0)) section.fail(f.key, "must be positive");
+    if (section.has(f.key) && is_density && !(*f.value >= 0.0)) section.fail(f.key, "must be >= 0");
+    if (section.has(f.key) && !is_density && !(*f.value > 0.0))
+      section.fail(f.key, "must be positive");
   }
   section.finish();
 }
@@ -59,8 +59,8 @@ void writePose(YAML::Emitter& out, const Pose& pose) {
   const Eigen::Vector3d& t = pose.translation();
   const Eigen::Quaterniond& q = pose.rotation();
   out << YAML::BeginMap;
-  out << YAML::Key << "translation" << YAML::Value << YAML::Flow << YAML::BeginSeq << t.x()
-      << t.y() << t.z() << YAML::EndSeq << YAML::Comment("metres");
+  out << YAML::Key << "translation" << YAML::Value << YAML::Flow << YAML::BeginSeq << t.x() << t.y()
+      << t.z() << YAML::EndSeq << YAML::Comment("metres");
   out << YAML::Key << "rotation_xyzw" << YAML::Value << YAML::Flow << YAML::BeginSeq << q.x()
       << q.y() << q.z() << q.w() << YAML::EndSeq
       << YAML::Comment("unit quaternion, Hamilton, x y z w");

@@ -1,21 +1,21 @@
-#include "config/calibration.h"
+#include "io/calibration_file.h"
 
 #include <yaml-cpp/yaml.h>
 
 #include "common/atomic_file.h"
 #include "common/error.h"
-#include "config/sensor_yaml.h"
-#include "config/yaml_section.h"
+#include "common/yaml_section.h"
+#include "io/sensor_yaml.h"
 
 namespace storey {
 
-void applyCalibrationFile(Config& config, const std::string& path) {
+Calibration readCalibrationFile(const std::string& path, const Calibration& base) {
   const std::string source = path + " (calibration)";
   const YAML::Node root = parseYaml(readTextFile(path), source);
   if (!root || root.IsNull()) throw Error(source + ": the file is empty");
   YamlSection top(root, source, "");
 
-  Config result = config;  // all or nothing: `config` is untouched on error
+  Calibration result = base;
   YamlSection pose = top.section("T_imu_lidar");
   if (!top.has("T_imu_lidar")) top.fail("T_imu_lidar", "is required but missing");
   result.sensor.T_imu_lidar = readPose(pose);
@@ -26,44 +26,39 @@ void applyCalibrationFile(Config& config, const std::string& path) {
   readLidarModel(lidar, "model", result.sensor.lidar_model);
   lidar.finish();
   YamlSection topics = top.section("topics");
-  topics.read("points", result.input.points_topic);
-  topics.read("imu", result.input.imu_topic);
+  topics.read("points", result.points_topic);
+  topics.read("imu", result.imu_topic);
   topics.finish();
   top.finish();
   try {
-    result.validate();
+    result.sensor.validate();
   } catch (const Error& e) {
     throw Error(source + ": " + e.what());
   }
-  config = result;
+  return result;
 }
 
-Config loadRunConfig(const std::string& config_path, const std::string& calibration_path) {
-  Config config = config_path.empty() ? Config{} : loadConfig(config_path);
-  if (!calibration_path.empty()) applyCalibrationFile(config, calibration_path);
-  return config;
-}
-
-void writeCalibrationFile(const Config& config, const std::string& path) {
+void writeCalibrationFile(const Calibration& calibration, const std::string& path) {
+  const SensorConfig& sensor = calibration.sensor;
   YAML::Emitter out;
   out.SetDoublePrecision(17);
   out << YAML::Comment("Storey sensor calibration, format version 1");
   out << YAML::BeginMap;
   out << YAML::Key << "T_imu_lidar" << YAML::Comment("pose of the LiDAR frame in the IMU frame")
       << YAML::Value;
-  writePose(out, config.sensor.T_imu_lidar);
-  out << YAML::Key << "time_offset_lidar_to_imu" << YAML::Value
-      << config.sensor.time_offset_lidar_to_imu << YAML::Comment("seconds; t_imu = t_lidar + offset");
+  writePose(out, sensor.T_imu_lidar);
+  out << YAML::Key << "time_offset_lidar_to_imu" << YAML::Value << sensor.time_offset_lidar_to_imu
+      << YAML::Comment("seconds; t_imu = t_lidar + offset");
   out << YAML::Key << "imu" << YAML::Value;
-  writeImuNoise(out, config.sensor.imu);
+  writeImuNoise(out, sensor.imu);
   out << YAML::Key << "lidar" << YAML::Value << YAML::BeginMap << YAML::Key << "model"
-      << YAML::Value << toString(config.sensor.lidar_model) << YAML::EndMap;
-  if (!config.input.points_topic.empty() || !config.input.imu_topic.empty()) {
+      << YAML::Value << toString(sensor.lidar_model) << YAML::EndMap;
+  if (!calibration.points_topic.empty() || !calibration.imu_topic.empty()) {
     out << YAML::Key << "topics" << YAML::Value << YAML::BeginMap;
-    if (!config.input.points_topic.empty())
-      out << YAML::Key << "points" << YAML::Value << config.input.points_topic;
-    if (!config.input.imu_topic.empty())
-      out << YAML::Key << "imu" << YAML::Value << config.input.imu_topic;
+    if (!calibration.points_topic.empty())
+      out << YAML::Key << "points" << YAML::Value << calibration.points_topic;
+    if (!calibration.imu_topic.empty())
+      out << YAML::Key << "imu" << YAML::Value << calibration.imu_topic;
     out << YAML::EndMap;
   }
   out << YAML::EndMap;

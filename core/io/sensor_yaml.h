@@ -1,11 +1,11 @@
 #pragma once
 /// YAML readers and writers of the sensor description shared by the config
 /// file (under `sensor:`) and the calibration file (at its top level).
-/// Internal to core/config.
+/// Used by io/calibration_file.cpp and config/.
 #include <yaml-cpp/yaml.h>
 
-#include "config/config.h"
-#include "config/yaml_section.h"
+#include "common/yaml_section.h"
+#include "types/sensor.h"
 
 namespace storey {
 

@@ -1,4 +1,4 @@
-#include "config/yaml_section.h"
+#include "common/yaml_section.h"
 
 #include <algorithm>
 #include <cmath>
@@ -43,7 +43,8 @@ std::string scalarText(const YAML::Node& node) {
 YamlSection::YamlSection(const YAML::Node& node, std::string source, std::string path)
     : node_(node), source_(std::move(source)), path_(std::move(path)) {
   if (node_ && !node_.IsNull() && !node_.IsMap()) {
-    throw Error(source_ + ": " + (path_.empty() ? std::string("the document") : "key '" + path_ + "'") +
+    throw Error(source_ + ": " +
+                (path_.empty() ? std::string("the document") : "key '" + path_ + "'") +
                 lineOf(node_) + " must be a mapping of keys, got " + scalarText(node_));
   }
 }
@@ -121,8 +122,9 @@ void YamlSection::read(const std::string& key, std::vector<double>& value,
   if (!value_node) return;
   const YAML::Node& n = *value_node;
   const std::string expected = "must be a list of " + std::to_string(expected_size) + " numbers";
-  if (!n.IsSequence() || n.size() != expected_size) fail(key, expected + ", got " + scalarText(n) +
-                                                                 (n.IsSequence() ? " of " + std::to_string(n.size()) : ""));
+  if (!n.IsSequence() || n.size() != expected_size)
+    fail(key, expected + ", got " + scalarText(n) +
+                  (n.IsSequence() ? " of " + std::to_string(n.size()) : ""));
   std::vector<double> parsed(expected_size);
   for (std::size_t i = 0; i < expected_size; ++i) {
     if (!n[i].IsScalar() || !YAML::convert<double>::decode(n[i], parsed[i]) ||
@@ -169,7 +171,8 @@ YAML::Node parseYaml(const std::string& text, const std::string& source) {
   try {
     return YAML::Load(text);
   } catch (const YAML::Exception& e) {
-    throw Error(source + ": not valid YAML at line " + std::to_string(e.mark.line + 1) + ": " + e.msg);
+    throw Error(source + ": not valid YAML at line " + std::to_string(e.mark.line + 1) + ": " +
+                e.msg);
   }
 }
 

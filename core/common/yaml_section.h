@@ -1,7 +1,8 @@
 #pragma once
 /// Reads one YAML mapping into plain struct fields, key by key, and reports
 /// what a user can act on: an unknown or mistyped key is a storey::Error
-/// naming the file, the full key path and its line. Internal to core/config.
+/// naming the file, the full key path and its line. Used by the readers of YAML files (config,
+/// calibration, building specs).
 #include <yaml-cpp/yaml.h>
 
 #include <Eigen/Core>

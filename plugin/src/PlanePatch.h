@@ -1,37 +1,16 @@
 #pragma once
-/// The global SRPs of a run (PipelineResult::planes_json, format in
-/// docs/outputs.md) as plain structs, and the rectangle that shows each one:
-/// the bounding rectangle, in the plane, of its observations' convex hulls
-/// placed in the world by their keyframe poses. No Qt, no CloudCompare.
+/// The rectangle that shows a global SRP of a run (types/plane_map.h, read
+/// and written by export/planes_json.h): the bounding rectangle, in the
+/// plane, of its observations' convex hulls placed in the world by their
+/// keyframe poses; and the plane's kind. No Qt, no CloudCompare.
 #include <Eigen/Core>
-#include <optional>
 #include <string>
 #include <vector>
 
 #include "trajectory/tum.h"
+#include "types/plane_map.h"
 
 namespace storey::plugin {
-
-struct PlaneObservation {
-  int keyframe = -1;                           ///< index into the run's keyframes
-  Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();  ///< keyframe LiDAR frame
-  double distance = 0.0;                       ///< [m], keyframe LiDAR frame
-  long points = 0;                             ///< inliers
-  double fit_rms = 0.0;                        ///< [m]
-  double residual_chi2 = 0.0;
-  bool outlier = false;
-  std::optional<Eigen::Vector3d> centroid;     ///< of the inliers, keyframe LiDAR frame [m]
-  std::vector<Eigen::Vector3d> hull;           ///< convex hull of the inliers, keyframe LiDAR frame [m]
-};
-
-struct GlobalPlane {
-  int id = 0;
-  Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();  ///< world, Hesse form n . x = d
-  double distance = 0.0;                              ///< [m]
-  /// From the plane towards the side it was seen from (world); absent in old files.
-  std::optional<Eigen::Vector3d> facing;
-  std::vector<PlaneObservation> observations;
-};
 
 /// "floor" (horizontal, seen from above), "ceiling" (horizontal, seen from
 /// below), "wall" (vertical), or "plane"; horizontal/vertical within 20 deg.
@@ -39,17 +18,14 @@ struct GlobalPlane {
 /// were above it, else "ceiling".
 std::string planeKind(const GlobalPlane& plane, const Trajectory& keyframes);
 
-/// Parses planes.json text. Throws storey::Error when it is not that format.
-std::vector<GlobalPlane> parsePlanesJson(const std::string& json_text);
-
 /// A rectangle on a plane, world frame.
 struct PlanePatch {
   Eigen::Vector3d center = Eigen::Vector3d::Zero();  ///< on the plane [m]
   Eigen::Vector3d u = Eigen::Vector3d::UnitX();      ///< width direction (horizontal for walls)
   Eigen::Vector3d v = Eigen::Vector3d::UnitY();      ///< height direction, v = n x u
   Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();
-  double width = 0.0;   ///< along u [m]
-  double height = 0.0;  ///< along v [m]
+  double width = 0.0;       ///< along u [m]
+  double height = 0.0;      ///< along v [m]
   bool from_hulls = false;  ///< false: no hull in the file, fixed size around the observations
 };
 

@@ -1,0 +1,312 @@
+#include "backend/srp_backend.h"
+
+#include <chrono>
+#include <cmath>
+
+#include "backend/keyframe_rule.h"
+#include "backend/plane_graph.h"
+#include "common/error.h"
+
+namespace storey {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double msSince(Clock::time_point t) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
+}
+
+Pose interpolate(const Pose& a, const Pose& b, double alpha) {
+  return Pose(a.rotation().slerp(alpha, b.rotation()),
+              (1.0 - alpha) * a.translation() + alpha * b.translation());
+}
+
+}  // namespace
+
+struct SrpBackend::Impl {
+  struct ScanRecord {
+    double time;
+    Pose T_odom_lidar;  // the odometry's pose (its own world frame)
+  };
+  struct Keyframe {
+    std::size_t scan;
+    double time;
+    Pose T_odom_lidar;
+    int graph_index;
+  };
+  struct ObservationRecord {
+    int keyframe, plane, graph_index;
+    Plane plane_keyframe;               // as observed (Hesse form)
+    Eigen::Vector3d centroid;           // of the inliers, keyframe frame
+    std::vector<Eigen::Vector3d> hull;  // outline on the plane, keyframe frame
+    int points;
+    double rms;
+    double chi2_at_match;
+  };
+
+  BackendConfig config;
+  backend::PlaneGraph graph;
+  std::vector<ScanRecord> scans;
+  std::vector<Keyframe> kfs;
+  std::vector<ObservationRecord> observations;
+  std::vector<int> last_seen_kf;         // per landmark
+  std::vector<int> observation_count;    // per landmark
+  std::vector<double> observation_chi2;  // after finish()
+  // The graph's correction of the odometry as of the last solve:
+  // T_world_lidar = T_world_odom * T_odom_lidar (identity until the first solve).
+  Pose T_world_odom;
+  std::vector<Eigen::Vector3f> last_points;  // the newest scan when it is no keyframe
+  Pose last_T_world_lidar;
+  BackendStats stats;
+  bool finished = false;
+
+  explicit Impl(const BackendConfig& c) : config(c), graph(c.graph) {}
+
+  bool isKeyframe(const Pose& T_world_lidar, double time) const {
+    if (kfs.empty()) return true;
+    return isNewKeyframe(config.keyframes, T_world_odom * kfs.back().T_odom_lidar, kfs.back().time,
+                         T_world_lidar, time);
+  }
+
+  Eigen::Matrix<double, 6, 6> odometryInformation(const Pose& T_a_b) const {
+    const GraphConfig& g = config.graph;
+    const double dist = T_a_b.translation().norm();
+    const double st = g.odometry_sigma_translation + g.odometry_sigma_translation_per_m * dist;
+    const double sr = g.odometry_sigma_rotation + g.odometry_sigma_rotation_per_m * dist;
+    Eigen::Matrix<double, 6, 1> diag;
+    diag << 1 / (st * st), 1 / (st * st), 1 / (st * st), 1 / (sr * sr), 1 / (sr * sr),
+        1 / (sr * sr);
+    return diag.asDiagonal();
+  }
+
+  /// Adds the newest scan as a keyframe (T_world_lidar: its odometry pose
+  /// corrected as of the last solve); optimises when a plane constraint appears.
+  void processKeyframe(const std::vector<Eigen::Vector3f>& points, const Pose& T_world_lidar) {
+    const std::size_t scan_index = scans.size() - 1;
+    const Pose& T_odom_lidar = scans.back().T_odom_lidar;
+    // Best current estimate: the last optimised keyframe and the odometry since.
+    Pose T_pred = T_world_lidar;
+    if (!kfs.empty()) {
+      const Keyframe& last = kfs.back();
+      T_pred = graph.keyframePose(last.graph_index) * (last.T_odom_lidar.inverse() * T_odom_lidar);
+    }
+    const int kf_graph = graph.addKeyframe(T_pred);
+    const int kf_index = static_cast<int>(kfs.size());
+    if (!kfs.empty()) {
+      const Keyframe& last = kfs.back();
+      const Pose T_a_b = last.T_odom_lidar.inverse() * T_odom_lidar;
+      graph.addRelativePose(last.graph_index, kf_graph, T_a_b, odometryInformation(T_a_b));
+    }
+    kfs.push_back({scan_index, scans.back().time, T_odom_lidar, kf_graph});
+    ++stats.keyframes;
+
+    // SRP extraction on the deskewed scan.
+    auto t = Clock::now();
+    const backend::SrpExtractionResult srps = backend::extractSrps(points, config.extraction);
+    stats.ms_extraction.push_back(msSince(t));
+    stats.srps += static_cast<std::int64_t>(srps.srps.size());
+    if (srps.srps.empty()) ++stats.keyframes_without_srp;
+    for (std::size_t i = 0; i < stats.plane_rejects.size(); ++i)
+      stats.plane_rejects[i] += srps.rejects[i];
+
+    // Association with the global plane map predicted in the keyframe.
+    t = Clock::now();
+    std::vector<backend::PlanePrediction> predictions;
+    predictions.reserve(static_cast<std::size_t>(graph.landmarks()));
+    const Eigen::Matrix3d R = T_pred.rotationMatrix();
+    for (int j = 0; j < graph.landmarks(); ++j) {
+      const backend::PlaneLandmark l = graph.landmark(j);
+      predictions.push_back({j, R.transpose() * l.n_world,
+                             l.d_world - l.n_world.dot(T_pred.translation()),
+                             observation_count[static_cast<std::size_t>(j)]});
+    }
+    const backend::AssociationResult assoc =
+        backend::associate(srps.srps, predictions, config.association);
+    for (std::size_t i = 0; i < stats.gate_rejects.size(); ++i)
+      stats.gate_rejects[i] += assoc.gate_rejects[i];
+    bool constraint = false, revisit = false;
+    const int window = config.graph.window_keyframes;
+    for (std::size_t i = 0; i < srps.srps.size(); ++i) {
+      const backend::DetectedPlane& srp = srps.srps[i];
+      const backend::SrpAssociation& a = assoc.srps[i];
+      ++stats.outcomes[static_cast<std::size_t>(a.outcome)];
+      int plane = -1;
+      if (a.outcome == backend::AssociationOutcome::kMatched) {
+        plane = a.landmark;
+        constraint = true;
+        if (window > 0 && kf_index - last_seen_kf[static_cast<std::size_t>(plane)] >= window)
+          revisit = true;
+      } else if (a.outcome == backend::AssociationOutcome::kNewPlane) {
+        const Eigen::Vector3d n_world = T_pred.rotation() * srp.plane.normal();
+        plane =
+            graph.addLandmark({n_world, srp.plane.distance() + n_world.dot(T_pred.translation())});
+        last_seen_kf.push_back(kf_index);
+        observation_count.push_back(0);
+      } else {
+        continue;
+      }
+      const GraphConfig& gc = config.graph;
+      const Eigen::Vector3d model_var(gc.plane_sigma_rotation * gc.plane_sigma_rotation,
+                                      gc.plane_sigma_rotation * gc.plane_sigma_rotation,
+                                      gc.plane_sigma_distance * gc.plane_sigma_distance);
+      const int o = graph.addObservation(kf_graph, plane, srp.plane.normal(), srp.plane.distance(),
+                                         srp.covariance + Eigen::Matrix3d(model_var.asDiagonal()));
+      observations.push_back(
+          {kf_index, plane, o, srp.plane, srp.centroid, srp.hull, srp.points, srp.rms, a.chi2});
+      last_seen_kf[static_cast<std::size_t>(plane)] = kf_index;
+      ++observation_count[static_cast<std::size_t>(plane)];
+    }
+    stats.ms_association.push_back(msSince(t));
+    stats.planes = graph.landmarks();
+    stats.observations = graph.observations();
+    if (!constraint) return;
+
+    // Optimise: the newest keyframes (pulled to the planes older keyframes
+    // saw), the whole graph every full_every solves and at the end (then the
+    // correction of a revisited plane reaches back over the whole loop).
+    const GraphConfig& g = config.graph;
+    const bool full = window <= 0 || (stats.optimisations % std::max(g.full_every, 1)) == 0;
+    if (revisit) ++stats.revisits;
+    const backend::GraphSolveStats solve = graph.optimise(full ? 0 : window, g.max_iterations);
+    ++stats.optimisations;
+    if (solve.full) ++stats.full_optimisations;
+    stats.ms_optimisation.push_back(solve.ms);
+    (solve.full ? stats.ms_full_optimisation : stats.ms_window_optimisation).push_back(solve.ms);
+    stats.optimisation_keyframes.push_back(graph.keyframes());
+
+    // The correction the solve made at this keyframe, composed as the
+    // odometry's poses after it will need it.
+    const Pose T_corrected_current = graph.keyframePose(kf_graph) * T_world_lidar.inverse();
+    T_world_odom = T_corrected_current * T_world_odom;
+  }
+
+  /// Final pose of the LiDAR for every scan: the odometry since the keyframe
+  /// before it, corrected by interpolating the corrections of the keyframes
+  /// on either side.
+  Trajectory trajectory() const {
+    Trajectory out;
+    out.reserve(scans.size());
+    std::size_t a = 0;  // the last keyframe at or before the scan
+    for (std::size_t s = 0; s < scans.size(); ++s) {
+      const ScanRecord& scan = scans[s];
+      if (kfs.empty()) {
+        out.push_back({scan.time, scan.T_odom_lidar});
+        continue;
+      }
+      while (a + 1 < kfs.size() && kfs[a + 1].scan <= s) ++a;
+      const Keyframe& ka = kfs[a];
+      const Pose from_a =
+          graph.keyframePose(ka.graph_index) * (ka.T_odom_lidar.inverse() * scan.T_odom_lidar);
+      if (s < ka.scan || a + 1 >= kfs.size()) {
+        out.push_back({scan.time, from_a});
+        continue;
+      }
+      const Keyframe& kb = kfs[a + 1];
+      const Pose from_b =
+          graph.keyframePose(kb.graph_index) * (kb.T_odom_lidar.inverse() * scan.T_odom_lidar);
+      const double span = kb.time - ka.time;
+      const double alpha = span > 0 ? std::clamp((scan.time - ka.time) / span, 0.0, 1.0) : 0.0;
+      out.push_back({scan.time, interpolate(from_a, from_b, alpha)});
+    }
+    return out;
+  }
+
+  /// The front end's own trajectory (continuous; what it is on its own).
+  Trajectory odometry() const {
+    Trajectory out;
+    out.reserve(scans.size());
+    for (const ScanRecord& s : scans) out.push_back({s.time, s.T_odom_lidar});
+    return out;
+  }
+
+  Trajectory keyframes() const {
+    Trajectory out;
+    for (const Keyframe& k : kfs) out.push_back({k.time, graph.keyframePose(k.graph_index)});
+    return out;
+  }
+
+  /// The global planes with their observations (after finish(): residuals of the final solve).
+  PlaneMap planeMap() const {
+    PlaneMap map;
+    map.keyframes = static_cast<long>(kfs.size());
+    map.planes.resize(static_cast<std::size_t>(graph.landmarks()));
+    for (int j = 0; j < graph.landmarks(); ++j) {
+      const backend::PlaneLandmark l = graph.landmark(j);
+      const Plane hesse(l.n_world, l.d_world);
+      GlobalPlane& plane = map.planes[static_cast<std::size_t>(j)];
+      plane.id = j;
+      plane.normal_world = hesse.normal();
+      plane.distance_world = hesse.distance();
+      plane.facing_world = -l.n_world;
+    }
+    for (std::size_t i = 0; i < observations.size(); ++i) {
+      const ObservationRecord& o = observations[i];
+      const double chi2 =
+          i < observation_chi2.size() ? observation_chi2[i] : graph.observationChi2(o.graph_index);
+      PlaneObservation obs;
+      obs.keyframe = o.keyframe;
+      obs.time = kfs[static_cast<std::size_t>(o.keyframe)].time;
+      obs.normal_keyframe = o.plane_keyframe.normal();
+      obs.distance_keyframe = o.plane_keyframe.distance();
+      obs.centroid_keyframe = o.centroid;
+      obs.hull_keyframe = o.hull;
+      obs.points = o.points;
+      obs.fit_rms = o.rms;
+      obs.residual_chi2 = chi2;
+      obs.outlier = chi2 > config.graph.outlier_chi2 && graph.observationCount(o.plane) > 1;
+      map.planes[static_cast<std::size_t>(o.plane)].observations.push_back(std::move(obs));
+    }
+    return map;
+  }
+};
+
+SrpBackend::SrpBackend(const BackendConfig& config) : impl_(std::make_unique<Impl>(config)) {
+  config.validate();
+}
+SrpBackend::~SrpBackend() = default;
+
+BackendDecision SrpBackend::addScan(double time, const Pose& T_odom_lidar, const Scan& deskewed) {
+  Impl& m = *impl_;
+  const Pose T_world_lidar = m.T_world_odom * T_odom_lidar;
+  m.scans.push_back({time, T_odom_lidar});
+  ++m.stats.scans;
+  m.last_points.clear();
+  m.last_points.reserve(deskewed.points.size());
+  for (const ScanPoint& p : deskewed.points) m.last_points.push_back(p.p);
+  m.last_T_world_lidar = T_world_lidar;
+  if (!m.isKeyframe(T_world_lidar, time)) return {false, T_world_lidar};
+  m.processKeyframe(m.last_points, T_world_lidar);
+  m.last_points.clear();
+  return {true, T_world_lidar};
+}
+
+SlamResult SrpBackend::finish() {
+  Impl& m = *impl_;
+  if (m.finished) throw Error("internal: SrpBackend::finish called twice");
+  m.finished = true;
+  // The last scan becomes a keyframe too, so the end of the log is constrained.
+  if (!m.last_points.empty()) m.processKeyframe(m.last_points, m.last_T_world_lidar);
+  std::vector<Eigen::Vector3f>().swap(m.last_points);
+  const auto t = Clock::now();
+  if (m.config.graph.final_iterations > 0 && m.graph.observations() > 0)
+    m.graph.optimise(0, m.config.graph.final_iterations);
+  m.stats.ms_final_optimisation = msSince(t);
+  m.observation_chi2.clear();
+  m.stats.wrong_associations = 0;
+  for (const auto& o : m.observations) {
+    const double chi2 = m.graph.observationChi2(o.graph_index);
+    m.observation_chi2.push_back(chi2);
+    // A plane seen once is no association (its residual is the level prior's).
+    if (chi2 > m.config.graph.outlier_chi2 && m.graph.observationCount(o.plane) > 1)
+      ++m.stats.wrong_associations;
+  }
+  SlamResult result;
+  result.odometry = m.odometry();
+  result.trajectory = m.trajectory();
+  result.keyframes = m.keyframes();
+  result.planes = m.planeMap();
+  result.stats = m.stats;
+  return result;
+}
+
+}  // namespace storey

@@ -1,0 +1,27 @@
+#pragma once
+/// How logs are read (the `input:` section of the configuration).
+#include <string>
+
+namespace storey {
+
+struct InputConfig {
+  std::string points_topic;  ///< PointCloud2 topic; empty = auto-detect
+  std::string imu_topic;     ///< Imu topic; empty = auto-detect
+  double min_range = 0.3;    ///< points closer than this are dropped [m] (robot body, sensor head)
+  double max_range = 120.0;  ///< points farther than this are dropped [m]
+  // Velodyne pcap, PCD folder and IMU CSV inputs (docs/formats.md).
+  std::string imu_csv;  ///< IMU CSV file; empty = none (PCD folder: imu.csv inside it)
+  double imu_csv_time_offset =
+      0.0;  ///< added to the CSV's stamps to put them on the LiDAR clock [s]
+  std::string velodyne_model = "auto";  ///< pcap: "auto" (from the packets), "VLP-16" or "HDL-32E"
+  std::string velodyne_calibration;  ///< pcap: VeloView calibration XML; empty = the manual's table
+  std::string pcap_clock =
+      "sensor";               ///< pcap: "sensor" (packet timestamps) or "capture" (record times)
+  int pcap_data_port = 2368;  ///< pcap: UDP port of data packets; 0 = any port
+  int pcap_position_port = 8308;  ///< pcap: UDP port of position (IMU) packets; 0 = any port
+
+  /// Checks value ranges; throws storey::Error naming the key (under `input.`) at fault.
+  void validate() const;
+};
+
+}  // namespace storey

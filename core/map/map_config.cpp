@@ -1,0 +1,19 @@
+#include "map/map_config.h"
+
+#include <string>
+
+#include "common/error.h"
+
+namespace storey {
+
+void MapConfig::validate() const {
+  auto positive = [](double value, const char* key) {
+    if (!(value > 0.0)) throw Error(std::string("key 'map.") + key + "' must be positive");
+  };
+  positive(scan_spacing, "scan_spacing");
+  positive(scan_angle_deg, "scan_angle_deg");
+  positive(voxel_size, "voxel_size");
+  positive(max_range, "max_range");
+}
+
+}  // namespace storey

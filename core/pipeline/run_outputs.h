@@ -1,0 +1,22 @@
+#pragma once
+/// The run's remaining files: trajectories, keyframes, planes.json and the
+/// report (written last, once).
+#include <string>
+#include <vector>
+
+#include "backend/backend.h"
+#include "pipeline/run_report.h"
+
+namespace storey {
+
+/// Creates the output folder (storey::Error naming it when it cannot).
+void createOutputFolder(const std::string& out_dir);
+
+/// Writes the trajectories (TUM, KITTI), keyframes.tum, planes.json (or
+/// removes a stale one when the back end is off), then report.json and
+/// report.md last. `files` (relative to out_dir) is extended with them.
+/// Returns the report as written (report.json's text).
+std::string writeRunOutputs(const std::string& out_dir, const SlamResult& slam,
+                            RunReportBuilder& report, std::vector<std::string>& files);
+
+}  // namespace storey

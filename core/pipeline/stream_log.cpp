@@ -1,0 +1,54 @@
+#include "pipeline/stream_log.h"
+
+#include "common/error.h"
+
+namespace storey {
+
+namespace {
+
+/// One final odometry result through the back end into the map selection.
+void passOn(OdometryResult& scan, Backend& backend, MapScanSelector& map_scans,
+            RunReportBuilder& report) {
+  report.addScan(scan);
+  const BackendDecision decision =
+      backend.addScan(scan.deskewed.time(), scan.T_world_lidar, scan.deskewed);
+  map_scans.addScan(std::move(scan.deskewed), decision.T_world_lidar, decision.keyframe);
+}
+
+}  // namespace
+
+void streamLog(const std::string& log_path, LogReader& reader, LidarInertialOdometry& odometry,
+               Backend& backend, MapScanSelector& map_scans, RunReportBuilder& report,
+               const ProgressFn& progress) {
+  std::size_t scans = 0;
+  OdometryResult result;
+  auto drain = [&] {
+    while (odometry.nextResult(result)) {
+      passOn(result, backend, map_scans, report);
+      ++scans;
+    }
+  };
+  LogMessage message;
+  std::int64_t messages = 0;
+  while (reader.next(message)) {
+    if (auto* scan = std::get_if<Scan>(&message)) {
+      odometry.addScan(std::move(*scan));
+    } else {
+      odometry.addImu(std::get<ImuSample>(message));
+    }
+    drain();
+    if (progress && (++messages % 256) == 0) {
+      const double fraction = reader.progress();
+      if (!progress(fraction < 0.0 ? 0.0 : fraction, "odometry")) throw Cancelled();
+    }
+  }
+  odometry.finish();
+  drain();
+  if (scans == 0) {
+    throw Error(log_path + ": no scan could be processed (" + std::to_string(reader.stats().scans) +
+                " scans read)");
+  }
+  map_scans.finish();
+}
+
+}  // namespace storey

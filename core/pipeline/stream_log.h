@@ -1,0 +1,25 @@
+#pragma once
+/// The streaming part of the pipeline: log -> odometry -> back end -> map
+/// scan selection, one message at a time (memory bounded by the odometry's
+/// window and the back end's graph, not by the log).
+#include <string>
+
+#include "backend/backend.h"
+#include "common/progress.h"
+#include "io/log_reader.h"
+#include "map/map_scan_selector.h"
+#include "odometry/odometry.h"
+#include "pipeline/run_report.h"
+
+namespace storey {
+
+/// Reads the whole log: every message into the odometry, every final
+/// odometry result into the back end, then its decision into the map scan
+/// selection and its counts into the report. Ends with the odometry flushed
+/// and the last map scan in. Throws storey::Error when no scan could be
+/// processed, storey::Cancelled when `progress` returns false.
+void streamLog(const std::string& log_path, LogReader& reader, LidarInertialOdometry& odometry,
+               Backend& backend, MapScanSelector& map_scans, RunReportBuilder& report,
+               const ProgressFn& progress);
+
+}  // namespace storey
