@@ -51,9 +51,16 @@ Footprint alphaShapeFootprint(const std::vector<Eigen::Vector2d>& points, double
         CGAL::area(f->vertex(0)->point(), f->vertex(1)->point(), f->vertex(2)->point())));
   }
 
-  // Boundary edges oriented with the interior on their left, chained into loops.
+  // Boundary edges oriented with the interior on their left, chained into
+  // loops. Vertices are ordered by their coordinates, not by their handles'
+  // addresses, so the loops (and where each starts) are the same on every run.
   using Vertex = AlphaShape::Vertex_handle;
-  std::multimap<Vertex, Vertex> next;
+  struct ByPoint {
+    bool operator()(const Vertex& a, const Vertex& b) const {
+      return CGAL::compare_xy(a->point(), b->point()) == CGAL::SMALLER;
+    }
+  };
+  std::multimap<Vertex, Vertex, ByPoint> next;
   for (auto e = shape.alpha_shape_edges_begin(); e != shape.alpha_shape_edges_end(); ++e) {
     AlphaShape::Face_handle f = e->first;
     int i = e->second;
