@@ -1,0 +1,55 @@
+// `storey run` on the tiny preset writes the same bytes as the golden files
+// in tests/golden/tiny (see its README: a behaviour-keeping change must keep
+// them; a change meant to alter results regenerates them in its commit).
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include "support/run_storey.h"
+#include "support/temp_dir.h"
+
+namespace storey {
+namespace {
+
+std::string readFile(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream os;
+  os << in.rdbuf();
+  return os.str();
+}
+
+/// "line N: <expected> | <actual>" for the first line that differs.
+std::string firstDifference(const std::string& expected, const std::string& actual) {
+  std::istringstream e(expected), a(actual);
+  std::string le, la;
+  for (int line = 1;; ++line) {
+    const bool more_e = static_cast<bool>(std::getline(e, le));
+    const bool more_a = static_cast<bool>(std::getline(a, la));
+    if (!more_e && !more_a) return "same lines (line endings differ?)";
+    if (le != la || more_e != more_a)
+      return "line " + std::to_string(line) + ": expected '" + le + "', got '" + la + "'";
+  }
+}
+
+TEST(Golden, TinyPresetWritesTheGoldenFiles) {
+  const std::filesystem::path golden = std::filesystem::path(STOREY_SOURCE_DIR) / "tests/golden/tiny";
+  test::TempDir dir;
+  const std::string out = (dir.path() / "out").string();
+  const test::RunResult run =
+      test::runStorey("run --preset tiny --no-render -o " + test::shellQuoted(out),
+                      dir.path().string());
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  for (const char* name : {"trajectory.tum", "keyframes.tum", "planes.json", "storeys.json"}) {
+    const std::string expected = readFile(golden / name);
+    ASSERT_FALSE(expected.empty()) << "golden file missing: " << (golden / name);
+    const std::string actual = readFile(std::filesystem::path(out) / name);
+    EXPECT_TRUE(expected == actual) << name << " differs from the golden file, "
+                                    << firstDifference(expected, actual);
+  }
+}
+
+}  // namespace
+}  // namespace storey
