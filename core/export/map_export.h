@@ -1,6 +1,5 @@
 #pragma once
-/// The map's files in OUT (names as in DESIGN.md "Outputs of storey run";
-/// formats in docs/outputs.md):
+/// The map's files in OUT (names and formats in docs/outputs.md):
 ///
 ///   map.las map.ply map.pcd              whole map
 ///   storeys/storey_NN.las storey_NN.ply  one per storey (NN = index, two digits)

@@ -37,8 +37,10 @@ class LogReader {
   virtual double progress() const { return -1.0; }
 };
 
-/// Opens a log by its content (ROS1 bag for now). Throws storey::Error when the
-/// file is missing, empty, not a supported format, or lacks point clouds or IMU.
+/// Opens a log by its content (ROS1 bag, Velodyne pcap, PCD folder;
+/// io/log_format.h) with the input options and the sensor set-up. Throws
+/// storey::Error when the file is missing, empty, not a supported format, or
+/// lacks point clouds or IMU.
 std::unique_ptr<LogReader> openLog(const std::string& path, const InputConfig& input,
                                    const SensorConfig& sensor);
 

@@ -34,7 +34,7 @@ struct PipelineResult {
 /// Runs the pipeline on `log_path` and writes into `out_dir` (created when
 /// missing): odometry.tum, trajectory.tum, trajectory_kitti*.txt, keyframes.tum,
 /// planes.json (back end on), map.las/ply/pcd, storeys/, storeys.json (map on),
-/// report.json and report.md (names in DESIGN.md, formats in docs/outputs.md).
+/// report.json and report.md (names and formats in docs/outputs.md).
 /// Every file is written atomically and only after the whole log was
 /// processed, so a failed run leaves no output behind. `progress` may return
 /// false to cancel (storey::Cancelled is thrown). Throws storey::Error on bad input.
