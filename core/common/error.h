@@ -15,6 +15,11 @@ class Error : public std::runtime_error {
 
 namespace storey {
 
+/// Config validation: throws Error("key '<key>' <what>") unless `ok`.
+inline void requireKey(bool ok, const std::string& key, const std::string& what) {
+  if (!ok) throw Error("key '" + key + "' " + what);
+}
+
 /// Thrown when a ProgressFn asked long-running work to stop.
 class Cancelled : public Error {
  public:

@@ -7,21 +7,13 @@
 
 namespace storey {
 
-namespace {
-
-void require(bool ok, const std::string& key, const std::string& what) {
-  if (!ok) throw Error("key '" + key + "' " + what);
-}
-
-}  // namespace
-
 void OdometryConfig::validate() const {
   const OdometryConfig& o = *this;
-  require(o.window_size >= 2, "odometry.window_size", "must be >= 2");
-  require(o.matching_rounds >= 1, "odometry.matching_rounds", "must be >= 1");
-  require(o.max_iterations >= 1, "odometry.max_iterations", "must be >= 1");
-  require(o.neighbours >= 3 && o.neighbours <= VoxelMap::kMaxNeighbours, "odometry.neighbours",
-          "must be within [3, 16]");
+  requireKey(o.window_size >= 2, "odometry.window_size", "must be >= 2");
+  requireKey(o.matching_rounds >= 1, "odometry.matching_rounds", "must be >= 1");
+  requireKey(o.max_iterations >= 1, "odometry.max_iterations", "must be >= 1");
+  requireKey(o.neighbours >= 3 && o.neighbours <= VoxelMap::kMaxNeighbours, "odometry.neighbours",
+             "must be within [3, 16]");
   for (const auto& [key, value] :
        {std::pair<const char*, double>{"odometry.max_neighbour_distance", o.max_neighbour_distance},
         {"odometry.plane_fit_tolerance", o.plane_fit_tolerance},
@@ -44,18 +36,19 @@ void OdometryConfig::validate() const {
         {"odometry.imu_init.max_accel_std", o.imu_init.max_accel_std},
         {"odometry.features.edge_threshold", o.features.edge_threshold},
         {"odometry.features.occlusion_gap", o.features.occlusion_gap}}) {
-    require(value > 0.0, key, "must be positive");
+    requireKey(value > 0.0, key, "must be positive");
   }
-  require(o.features.neighbours >= 2, "odometry.features.neighbours", "must be >= 2");
-  require(o.features.sectors >= 1, "odometry.features.sectors", "must be >= 1");
-  require(o.features.plane_threshold < o.features.edge_threshold,
-          "odometry.features.plane_threshold", "must be below 'odometry.features.edge_threshold'");
-  require(o.local_map.max_points_per_voxel >= 1, "odometry.local_map.max_points_per_voxel",
-          "must be >= 1");
-  require(o.max_neighbour_distance <= o.local_map.voxel_size, "odometry.max_neighbour_distance",
-          "must not exceed 'odometry.local_map.voxel_size' (neighbours are searched in the 27 "
-          "voxels around a point)");
-  require(o.imu_init.noise_margin >= 1.0, "odometry.imu_init.noise_margin", "must be >= 1");
+  requireKey(o.features.neighbours >= 2, "odometry.features.neighbours", "must be >= 2");
+  requireKey(o.features.sectors >= 1, "odometry.features.sectors", "must be >= 1");
+  requireKey(o.features.plane_threshold < o.features.edge_threshold,
+             "odometry.features.plane_threshold",
+             "must be below 'odometry.features.edge_threshold'");
+  requireKey(o.local_map.max_points_per_voxel >= 1, "odometry.local_map.max_points_per_voxel",
+             "must be >= 1");
+  requireKey(o.max_neighbour_distance <= o.local_map.voxel_size, "odometry.max_neighbour_distance",
+             "must not exceed 'odometry.local_map.voxel_size' (neighbours are searched in the 27 "
+             "voxels around a point)");
+  requireKey(o.imu_init.noise_margin >= 1.0, "odometry.imu_init.noise_margin", "must be >= 1");
   try {
     o.imu_init.validate();
   } catch (const Error& e) {
