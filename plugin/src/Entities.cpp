@@ -17,6 +17,7 @@
 #include <limits>
 
 #include "common/error.h"
+#include "export/storey_files.h"
 
 namespace storey::plugin {
 

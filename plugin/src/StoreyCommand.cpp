@@ -6,6 +6,7 @@
 #include "Entities.h"
 #include "StoreyRun.h"
 #include "common/error.h"
+#include "export/storey_files.h"
 
 namespace storey::plugin {
 

@@ -27,6 +27,7 @@
 #include "StoreyCommand.h"
 #include "StoreyRun.h"
 #include "common/error.h"
+#include "export/storey_files.h"
 
 namespace storey::plugin {
 
@@ -281,9 +282,9 @@ void StoreyPlugin::finishRun() {
       }
       const QString export_dir = env("STOREY_PLUGIN_AUTORUN_EXPORT");
       if (!export_dir.isEmpty() && entities.map) {
-        StoreyExportFormats formats;
+        StoreyFileFormats formats;
         formats.ply = true;
-        out << "exported " << storey::plugin::exportStoreys(fromCloud(*entities.map), export_dir.toStdString(), formats).size() << '\n';
+        out << "exported " << writeStoreyFiles(fromCloud(*entities.map), export_dir.toStdString(), formats).size() << '\n';
       }
     } catch (const std::exception& e) {
       out << "error: " << e.what() << '\n';
@@ -399,13 +400,13 @@ void StoreyPlugin::exportStoreys() {
   const QString format = QInputDialog::getItem(parent, "Storey: export storeys", "Format:",
                                                {"LAS 1.4", "PLY", "LAS 1.4 and PLY"}, 0, false, &ok);
   if (!ok) return;
-  StoreyExportFormats formats;
+  StoreyFileFormats formats;
   formats.las = format.startsWith("LAS");
   formats.ply = format.contains("PLY");
   try {
     QApplication::setOverrideCursor(Qt::WaitCursor);
     const MapCloud map = fromCloud(*cloud);
-    const std::vector<std::string> files = storey::plugin::exportStoreys(map, dir.toStdString(), formats);
+    const std::vector<std::string> files = writeStoreyFiles(map, dir.toStdString(), formats);
     QApplication::restoreOverrideCursor();
     for (const std::string& f : files) m_app->dispToConsole("[Storey] wrote " + QString::fromStdString(f));
   } catch (const std::exception& e) {
