@@ -71,14 +71,7 @@ bool StoreyCommand::process(ccCommandLineInterface& cmd) {
     return cmd.error(QString("[Storey] %1").arg(QString::fromStdString(e.what())));
   }
 
-  cmd.print(QString("[Storey] done in %1 s: %2 scans, %3 keyframes, %4 map points, %5 storeys; "
-                    "files in %6")
-                .arg(outcome.seconds, 0, 'f', 1)
-                .arg(outcome.result.trajectory.size())
-                .arg(outcome.result.keyframes.size())
-                .arg(outcome.result.map ? outcome.result.map->size() : 0)
-                .arg(outcome.result.storeys.size())
-                .arg(QString::fromStdString(outcome.out_dir)));
+  cmd.print(runSummary(outcome));
   for (const QString& line : reportText(outcome).split('\n', Qt::SkipEmptyParts)) cmd.print(line);
 
   if (!outcome.result.map) {
