@@ -44,7 +44,8 @@ const CCLib::ScalarField* field(const ccPointCloud& cloud, const char* name) {
 
 double timeOrigin(const RunOutcome& outcome) {
   if (!outcome.result.trajectory.empty()) return outcome.result.trajectory.front().time;
-  if (outcome.result.map && !outcome.result.map->time.empty()) return outcome.result.map->time.front();
+  if (outcome.result.map && !outcome.result.map->time.empty())
+    return outcome.result.map->time.front();
   return 0.0;
 }
 
@@ -93,12 +94,13 @@ MapCloud fromCloud(const ccPointCloud& cloud) {
     map.intensity.push_back(intensity->getValue(i));
     map.storey.push_back(static_cast<std::int16_t>(std::lround(storey->getValue(i))));
     map.time.push_back(origin + static_cast<double>(time->getValue(i)));
-    map.keyframe.push_back(keyframe_index < 0 ? -1
+    map.keyframe.push_back(keyframe_index < 0
+                               ? -1
                                : static_cast<std::int32_t>(std::lround(
                                      cloud.getScalarField(keyframe_index)->getValue(i))));
     map.flags.push_back(flags_index < 0 ? 0
-                            : static_cast<std::uint8_t>(std::lround(
-                                  cloud.getScalarField(flags_index)->getValue(i))));
+                                        : static_cast<std::uint8_t>(std::lround(
+                                              cloud.getScalarField(flags_index)->getValue(i))));
   }
   return map;
 }
@@ -108,8 +110,8 @@ ccPolyline* toPolyline(const Trajectory& trajectory, const QString& name) {
   vertices->reserve(static_cast<unsigned>(trajectory.size()));
   for (const StampedPose& s : trajectory) {
     const Eigen::Vector3d& t = s.pose.translation();
-    vertices->addPoint(CCVector3(static_cast<float>(t.x()), static_cast<float>(t.y()),
-                                 static_cast<float>(t.z())));
+    vertices->addPoint(
+        CCVector3(static_cast<float>(t.x()), static_cast<float>(t.y()), static_cast<float>(t.z())));
   }
   vertices->setEnabled(false);
   auto* polyline = new ccPolyline(vertices);
@@ -138,13 +140,15 @@ ccHObject* toPlaneEntities(const std::vector<GlobalPlane>& planes, const Traject
   for (const GlobalPlane& plane : planes) {
     const PlanePatch patch = planePatch(plane, keyframes);
     auto f = [](const Eigen::Vector3d& v) {
-      return CCVector3(static_cast<float>(v.x()), static_cast<float>(v.y()), static_cast<float>(v.z()));
+      return CCVector3(static_cast<float>(v.x()), static_cast<float>(v.y()),
+                       static_cast<float>(v.z()));
     };
     const ccGLMatrix pose(f(patch.u), f(patch.v), f(patch.normal), f(patch.center));
     const std::string kind = planeKind(plane, keyframes);
-    auto* entity = new ccPlane(static_cast<PointCoordinateType>(patch.width),
-                               static_cast<PointCoordinateType>(patch.height), &pose,
-                               QString("SRP %1 (%2)").arg(plane.id).arg(QString::fromStdString(kind)));
+    auto* entity =
+        new ccPlane(static_cast<PointCoordinateType>(patch.width),
+                    static_cast<PointCoordinateType>(patch.height), &pose,
+                    QString("SRP %1 (%2)").arg(plane.id).arg(QString::fromStdString(kind)));
     // Ceilings would hide the map seen from above: listed, unticked.
     if (kind == "ceiling") entity->setEnabled(false);
     unsigned char rgb[3];
@@ -180,8 +184,9 @@ Trajectory trajectoryFromText(const QString& text) {
     if (v.size() != 8) continue;
     StampedPose s;
     s.time = v[0].toDouble();
-    s.pose = Pose(Eigen::Quaterniond(v[7].toDouble(), v[4].toDouble(), v[5].toDouble(), v[6].toDouble()),
-                  Eigen::Vector3d(v[1].toDouble(), v[2].toDouble(), v[3].toDouble()));
+    s.pose =
+        Pose(Eigen::Quaterniond(v[7].toDouble(), v[4].toDouble(), v[5].toDouble(), v[6].toDouble()),
+             Eigen::Vector3d(v[1].toDouble(), v[2].toDouble(), v[3].toDouble()));
     trajectory.push_back(s);
   }
   return trajectory;
@@ -208,8 +213,8 @@ RunEntities toRunEntities(const RunOutcome& outcome) {
     auto* storeys = new ccHObject("storeys");
     for (const int s : storeyIndices(*r.map)) {
       const std::vector<std::uint32_t> indices = pointsOfStorey(*r.map, s);
-      ccPointCloud* cloud =
-          toCloud(*r.map, &indices, origin, QString("%1 storey %2").arg(stem).arg(s, 2, 10, QChar('0')));
+      ccPointCloud* cloud = toCloud(*r.map, &indices, origin,
+                                    QString("%1 storey %2").arg(stem).arg(s, 2, 10, QChar('0')));
       cloud->setMetaData(kMetaRole, "storey");
       cloud->setMetaData("storey.index", s);
       cloud->setEnabled(false);  // the map shows them all; switch one on to see it alone
@@ -260,8 +265,9 @@ QString reportText(const RunOutcome& outcome) {
 
 QString runSummary(const RunOutcome& outcome, const QString& extra) {
   const PipelineResult& r = outcome.result;
-  return QString("[Storey] done in %1 s: %2 scans, %3 keyframes, %4 map points, %5 storeys%6; "
-                 "files in %7")
+  return QString(
+             "[Storey] done in %1 s: %2 scans, %3 keyframes, %4 map points, %5 storeys%6; "
+             "files in %7")
       .arg(outcome.seconds, 0, 'f', 1)
       .arg(r.trajectory.size())
       .arg(r.keyframes.size())

@@ -17,17 +17,17 @@ namespace storey::plugin {
 /// Scalar fields of Storey clouds (docs/plugin.md).
 inline constexpr const char* kSfIntensity = "intensity";  ///< mean return intensity
 inline constexpr const char* kSfStorey = "storey";        ///< storey index, -1 = none
-inline constexpr const char* kSfTime = "time";  ///< first return [s] after the time origin
+inline constexpr const char* kSfTime = "time";          ///< first return [s] after the time origin
 inline constexpr const char* kSfKeyframe = "keyframe";  ///< keyframe that first saw the point
 inline constexpr const char* kSfFlags = "flags";        ///< 1 = stairs, 2 = floor (bits)
 inline constexpr const char* kSfSrp = "srp";  ///< "Inspect SRPs": global SRP id, -1 = none
 
 /// Metadata (kept in CloudCompare .bin files).
 inline constexpr const char* kMetaRun = "storey.run";  ///< on the run group: the log's path
-inline constexpr const char* kMetaPlanesJson = "storey.planes_json";  ///< on the run group
+inline constexpr const char* kMetaPlanesJson = "storey.planes_json";   ///< on the run group
 inline constexpr const char* kMetaKeyframes = "storey.keyframes_tum";  ///< on the run group
-inline constexpr const char* kMetaTimeOrigin = "storey.time_origin";  ///< on clouds [s]
-inline constexpr const char* kMetaSrpId = "storey.srp_id";  ///< on plane entities
+inline constexpr const char* kMetaTimeOrigin = "storey.time_origin";   ///< on clouds [s]
+inline constexpr const char* kMetaSrpId = "storey.srp_id";             ///< on plane entities
 
 /// A cloud of the points of `map` (all, or `indices`) with the scalar fields
 /// above; `time` is stored as seconds after `time_origin` (CloudCompare's
@@ -49,10 +49,10 @@ void srpColour(int id, unsigned char rgb[3]);
 /// Everything a run brings into the DB tree, under `group`.
 struct RunEntities {
   ccHObject* group = nullptr;
-  ccPointCloud* map = nullptr;          ///< null when the map was off
-  std::vector<ccPointCloud*> storeys;   ///< one per storey, bottom up
+  ccPointCloud* map = nullptr;         ///< null when the map was off
+  std::vector<ccPointCloud*> storeys;  ///< one per storey, bottom up
   ccPolyline* trajectory = nullptr;
-  ccHObject* planes = nullptr;          ///< null when the back end was off
+  ccHObject* planes = nullptr;  ///< null when the back end was off
 };
 RunEntities toRunEntities(const RunOutcome& outcome);
 

@@ -32,9 +32,9 @@ bool StoreyCommand::process(ccCommandLineInterface& cmd) {
   while (!args.empty()) {
     std::string* target = nullptr;
     QString option;
-    for (const auto& [keyword, field] : {std::pair{kConfig, &request.config_path},
-                                         std::pair{kCalibration, &request.calibration_path},
-                                         std::pair{kOut, &request.out_dir}}) {
+    for (const auto& [keyword, field] :
+         {std::pair{kConfig, &request.config_path},
+          std::pair{kCalibration, &request.calibration_path}, std::pair{kOut, &request.out_dir}}) {
       if (ccCommandLineInterface::IsCommand(args.front(), keyword)) {
         target = field;
         option = keyword;
@@ -81,7 +81,8 @@ bool StoreyCommand::process(ccCommandLineInterface& cmd) {
   const QString stem = QFileInfo(QString::fromStdString(outcome.log_path)).completeBaseName();
   const QString out = QString::fromStdString(outcome.out_dir);
   const MapCloud& map = *outcome.result.map;
-  const double origin = outcome.result.trajectory.empty() ? 0.0 : outcome.result.trajectory.front().time;
+  const double origin =
+      outcome.result.trajectory.empty() ? 0.0 : outcome.result.trajectory.front().time;
   try {
     cmd.clouds().emplace_back(toCloud(map, nullptr, origin, stem + "_map"), stem + "_map", out);
     for (const int s : storeyIndices(map)) {

@@ -31,20 +31,17 @@ Config loadRequestConfig(const RunRequest& request) {
   return loadRunConfig(request.config_path, resolveCalibration(request));
 }
 
-RunOutcome runStorey(const RunRequest& request, const Config& config,
-                     const ProgressFn& progress) {
+RunOutcome runStorey(const RunRequest& request, const Config& config, const ProgressFn& progress) {
   if (request.log_path.empty()) throw Error("no log given");
   std::error_code ec;
-  if (!fs::exists(request.log_path, ec))
-    throw Error(request.log_path + ": no such file or folder");
+  if (!fs::exists(request.log_path, ec)) throw Error(request.log_path + ": no such file or folder");
   RunOutcome outcome;
   outcome.log_path = request.log_path;
   outcome.out_dir = resolveOutDir(request);
   outcome.calibration_path = resolveCalibration(request);
   const auto start = std::chrono::steady_clock::now();
   outcome.result = runPipeline(request.log_path, config, outcome.out_dir, progress);
-  outcome.seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  outcome.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return outcome;
 }
 

@@ -14,10 +14,11 @@ namespace storey::plugin {
 
 /// The files of a run, as the surveyor names them.
 struct RunRequest {
-  std::string log_path;          ///< bag, pcap or PCD folder (required)
-  std::string config_path;       ///< YAML configuration; empty = built-in defaults
-  std::string calibration_path;  ///< sensor calibration; empty = calibration.yaml beside the log, if any
-  std::string out_dir;           ///< empty = <log folder>/<log stem>_storey
+  std::string log_path;     ///< bag, pcap or PCD folder (required)
+  std::string config_path;  ///< YAML configuration; empty = built-in defaults
+  std::string
+      calibration_path;  ///< sensor calibration; empty = calibration.yaml beside the log, if any
+  std::string out_dir;   ///< empty = <log folder>/<log stem>_storey
 };
 
 /// The calibration file a run uses: the one given, else `calibration.yaml`
@@ -41,7 +42,6 @@ struct RunOutcome {
 
 /// Checks the log exists, then runs the pipeline (core/pipeline) with
 /// `config`. Throws storey::Error (bad input) or storey::Cancelled.
-RunOutcome runStorey(const RunRequest& request, const Config& config,
-                     const ProgressFn& progress);
+RunOutcome runStorey(const RunRequest& request, const Config& config, const ProgressFn& progress);
 
 }  // namespace storey::plugin

@@ -98,7 +98,8 @@ TEST(PluginPlanes, KindFromNormalAndTheSideItWasSeenFrom) {
 TEST(PluginPlanes, BadJsonIsAnError) {
   EXPECT_THROW(parsePlanesJson("{"), Error);
   EXPECT_THROW(parsePlanesJson("{\"planes\": 3}"), Error);
-  EXPECT_THROW(parsePlanesJson(R"({"planes": [{"id": 0, "normal": [1, 0], "distance": 1}]})"), Error);
+  EXPECT_THROW(parsePlanesJson(R"({"planes": [{"id": 0, "normal": [1, 0], "distance": 1}]})"),
+               Error);
 }
 
 TEST(PluginRun, CalibrationBesideTheLogAndDefaultOutputFolder) {
