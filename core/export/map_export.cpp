@@ -9,18 +9,13 @@
 #include "common/atomic_file.h"
 #include "common/error.h"
 #include "export/point_cloud_writers.h"
+#include "export/storey_files.h"
 
 namespace storey {
 
 namespace fs = std::filesystem;
 
 namespace {
-
-std::string storeyStem(int index) {
-  char name[32];
-  std::snprintf(name, sizeof(name), "storey_%02d", index);
-  return name;
-}
 
 nlohmann::json optionalNumber(const std::optional<double>& v) {
   return v ? nlohmann::json(*v) : nlohmann::json(nullptr);
@@ -82,23 +77,15 @@ std::vector<std::string> writeMapFiles(const std::string& out_dir, const MapClou
   writePcd((out / "map.pcd").string(), map);
   done("map.pcd");
 
-  std::vector<std::vector<std::uint32_t>> members(segmentation.storeys.size());
-  for (std::size_t i = 0; i < map.size(); ++i) {
-    const std::int16_t s = map.storey[i];
-    if (s >= 0 && static_cast<std::size_t>(s) < members.size())
-      members[static_cast<std::size_t>(s)].push_back(static_cast<std::uint32_t>(i));
-  }
+  std::vector<int> storeys;
+  for (const StoreyInfo& s : segmentation.storeys) storeys.push_back(s.index);
   std::vector<std::string> kept;
-  for (std::size_t k = 0; k < segmentation.storeys.size(); ++k) {
-    const std::string stem = storeyStem(segmentation.storeys[k].index);
-    writeLas((storeys_dir / (stem + ".las")).string(), map, &members[k]);
-    done("storeys/" + stem + ".las");
-    writePly((storeys_dir / (stem + ".ply")).string(), map, &members[k]);
-    done("storeys/" + stem + ".ply");
-    kept.push_back(stem + ".las");
-    kept.push_back(stem + ".ply");
-    std::vector<std::uint32_t>().swap(members[k]);
-  }
+  writeStoreyFiles(map, storeys, storeys_dir.string(), StoreyFileFormats{true, true},
+                   [&](const std::string& path) {
+                     const std::string name = fs::path(path).filename().string();
+                     kept.push_back(name);
+                     done("storeys/" + name);
+                   });
   // Files of a previous run with more storeys would be mistaken for this run's.
   const std::regex stale("storey_[0-9]+\\.(las|ply)");
   for (const auto& entry : fs::directory_iterator(storeys_dir, ec)) {

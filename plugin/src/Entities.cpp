@@ -18,6 +18,7 @@
 
 #include "common/error.h"
 #include "export/planes_json.h"
+#include "export/storey_files.h"
 
 namespace storey::plugin {
 
@@ -261,6 +262,20 @@ QString reportText(const RunOutcome& outcome) {
   QFile md(QString::fromStdString((std::filesystem::path(outcome.out_dir) / "report.md").string()));
   if (md.open(QIODevice::ReadOnly | QIODevice::Text)) return QString::fromUtf8(md.readAll());
   return QString::fromStdString(outcome.result.report_json);
+}
+
+QString runSummary(const RunOutcome& outcome, const QString& extra) {
+  const PipelineResult& r = outcome.result;
+  return QString(
+             "[Storey] done in %1 s: %2 scans, %3 keyframes, %4 map points, %5 storeys%6; "
+             "files in %7")
+      .arg(outcome.seconds, 0, 'f', 1)
+      .arg(r.trajectory.size())
+      .arg(r.keyframes.size())
+      .arg(r.map ? r.map->size() : 0)
+      .arg(r.storeys.size())
+      .arg(extra.isEmpty() ? QString() : QString(", " + extra))
+      .arg(QString::fromStdString(outcome.out_dir));
 }
 
 }  // namespace storey::plugin

@@ -6,6 +6,7 @@
 #include "Entities.h"
 #include "StoreyRun.h"
 #include "common/error.h"
+#include "export/storey_files.h"
 
 namespace storey::plugin {
 
@@ -31,9 +32,9 @@ bool StoreyCommand::process(ccCommandLineInterface& cmd) {
   while (!args.empty()) {
     std::string* target = nullptr;
     QString option;
-    for (const auto& [keyword, field] : {std::pair{kConfig, &request.config_path},
-                                         std::pair{kCalibration, &request.calibration_path},
-                                         std::pair{kOut, &request.out_dir}}) {
+    for (const auto& [keyword, field] :
+         {std::pair{kConfig, &request.config_path},
+          std::pair{kCalibration, &request.calibration_path}, std::pair{kOut, &request.out_dir}}) {
       if (ccCommandLineInterface::IsCommand(args.front(), keyword)) {
         target = field;
         option = keyword;
@@ -70,14 +71,7 @@ bool StoreyCommand::process(ccCommandLineInterface& cmd) {
     return cmd.error(QString("[Storey] %1").arg(QString::fromStdString(e.what())));
   }
 
-  cmd.print(QString("[Storey] done in %1 s: %2 scans, %3 keyframes, %4 map points, %5 storeys; "
-                    "files in %6")
-                .arg(outcome.seconds, 0, 'f', 1)
-                .arg(outcome.result.trajectory.size())
-                .arg(outcome.result.keyframes.size())
-                .arg(outcome.result.map ? outcome.result.map->size() : 0)
-                .arg(outcome.result.storeys.size())
-                .arg(QString::fromStdString(outcome.out_dir)));
+  cmd.print(runSummary(outcome));
   for (const QString& line : reportText(outcome).split('\n', Qt::SkipEmptyParts)) cmd.print(line);
 
   if (!outcome.result.map) {
@@ -87,7 +81,8 @@ bool StoreyCommand::process(ccCommandLineInterface& cmd) {
   const QString stem = QFileInfo(QString::fromStdString(outcome.log_path)).completeBaseName();
   const QString out = QString::fromStdString(outcome.out_dir);
   const MapCloud& map = *outcome.result.map;
-  const double origin = outcome.result.trajectory.empty() ? 0.0 : outcome.result.trajectory.front().time;
+  const double origin =
+      outcome.result.trajectory.empty() ? 0.0 : outcome.result.trajectory.front().time;
   try {
     cmd.clouds().emplace_back(toCloud(map, nullptr, origin, stem + "_map"), stem + "_map", out);
     for (const int s : storeyIndices(map)) {

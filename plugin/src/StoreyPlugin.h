@@ -1,21 +1,19 @@
 #pragma once
-/// qStorey: Storey SLAM inside CloudCompare (docs/plugin.md). Thin: actions
-/// and dialogs here, conversions in Entities, the core call in StoreyRun.
+/// qStorey: Storey SLAM inside CloudCompare (docs/plugin.md). Thin: this
+/// class only wires the menu actions to their files (ActionRun,
+/// ActionInspect, ActionExport), the command-line command (StoreyCommand)
+/// and the GUI test hook (AutorunHarness); conversions are in Entities, the
+/// core call in StoreyRun.
 #include <ccStdPluginInterface.h>
 
-#include <QFutureWatcher>
 #include <QObject>
-#include <memory>
-
-#include "StoreyRun.h"
 
 class QAction;
-class QProgressDialog;
-class QTimer;
 
 namespace storey::plugin {
 
-struct RunJob;
+class ActionRun;
+class AutorunHarness;
 
 class StoreyPlugin : public QObject, public ccStdPluginInterface {
   Q_OBJECT
@@ -24,7 +22,6 @@ class StoreyPlugin : public QObject, public ccStdPluginInterface {
 
  public:
   explicit StoreyPlugin(QObject* parent = nullptr);
-  ~StoreyPlugin() override;
 
   QList<QAction*> getActions() override;
   void onNewSelection(const ccHObject::Container& selected) override;
@@ -32,29 +29,14 @@ class StoreyPlugin : public QObject, public ccStdPluginInterface {
   void setMainAppInterface(ccMainAppInterface* app) override;
 
  private:
-  void runOnLog();          ///< "Run Storey SLAM on a log…"
-  void colourBySrp();       ///< "Inspect SRPs: colour by SRP"
-  void planesOfKeyframe();  ///< "Inspect SRPs: planes seen from a keyframe…"
-  void exportStoreys();     ///< "Export storeys…"
-
-  /// Runs on a worker thread with a progress dialog; results reach the DB tree in finishRun().
-  void startRun(const RunRequest& request, const Config& config);
-  void pollProgress();
-  void finishRun();
-  void autorun();  ///< test hook: STOREY_PLUGIN_AUTORUN=LOG (docs/plugin.md)
-  void autorunFinish(const QString& summary, int exit_code);
-  void error(const QString& message);
   ccHObject* selectedEntity() const;
 
-  QAction* run_action_ = nullptr;
-  QAction* colour_action_ = nullptr;
-  QAction* keyframe_action_ = nullptr;
-  QAction* export_action_ = nullptr;
-  std::shared_ptr<RunJob> job_;
-  QFutureWatcher<void>* watcher_ = nullptr;
-  QProgressDialog* progress_ = nullptr;
-  QTimer* poll_ = nullptr;
-  bool autorun_ = false;
+  QAction* run_action_ = nullptr;       ///< "Run Storey SLAM on a log…"
+  QAction* colour_action_ = nullptr;    ///< "Inspect SRPs: colour by SRP"
+  QAction* keyframe_action_ = nullptr;  ///< "Inspect SRPs: planes seen from a keyframe…"
+  QAction* export_action_ = nullptr;    ///< "Export storeys…"
+  ActionRun* run_ = nullptr;            ///< the run action's state (worker, progress dialog)
+  AutorunHarness* harness_ = nullptr;   ///< only with STOREY_PLUGIN_AUTORUN set
 };
 
 }  // namespace storey::plugin

@@ -1,13 +1,10 @@
 #include "StoreyRun.h"
 
 #include <chrono>
-#include <cstdio>
 #include <filesystem>
-#include <set>
 
 #include "common/error.h"
 #include "config/config.h"
-#include "export/point_cloud_writers.h"
 
 namespace storey::plugin {
 
@@ -46,45 +43,6 @@ RunOutcome runStorey(const RunRequest& request, const Config& config, const Prog
   outcome.result = runPipeline(request.log_path, config, outcome.out_dir, progress);
   outcome.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return outcome;
-}
-
-std::vector<int> storeyIndices(const MapCloud& map) {
-  std::set<int> seen;
-  for (std::int16_t s : map.storey)
-    if (s != kNoStorey) seen.insert(s);
-  return {seen.begin(), seen.end()};
-}
-
-std::vector<std::uint32_t> pointsOfStorey(const MapCloud& map, int storey) {
-  std::vector<std::uint32_t> indices;
-  for (std::size_t i = 0; i < map.storey.size(); ++i)
-    if (map.storey[i] == storey) indices.push_back(static_cast<std::uint32_t>(i));
-  return indices;
-}
-
-std::vector<std::string> exportStoreys(const MapCloud& map, const std::string& dir,
-                                       const StoreyExportFormats& formats) {
-  const std::vector<int> storeys = storeyIndices(map);
-  if (storeys.empty()) throw Error("the cloud has no storey labels (was storey segmentation on?)");
-  std::error_code ec;
-  fs::create_directories(dir, ec);
-  if (ec) throw Error(dir + ": cannot create the folder: " + ec.message());
-  std::vector<std::string> written;
-  for (int s : storeys) {
-    const std::vector<std::uint32_t> indices = pointsOfStorey(map, s);
-    char stem[32];
-    std::snprintf(stem, sizeof(stem), "storey_%02d", s);
-    const fs::path base = fs::path(dir) / stem;
-    if (formats.las) {
-      writeLas(base.string() + ".las", map, &indices);
-      written.push_back(base.string() + ".las");
-    }
-    if (formats.ply) {
-      writePly(base.string() + ".ply", map, &indices);
-      written.push_back(base.string() + ".ply");
-    }
-  }
-  return written;
 }
 
 }  // namespace storey::plugin

@@ -4,23 +4,21 @@
 /// struct, loaded as `storey run` loads it), and the pipeline call. No Qt and
 /// no CloudCompare here: the GUI action and the command-line command both call
 /// these functions.
-#include <cstdint>
 #include <string>
-#include <vector>
 
 #include "common/progress.h"
 #include "config/config.h"
-#include "map/map_cloud.h"
 #include "pipeline/pipeline.h"
 
 namespace storey::plugin {
 
 /// The files of a run, as the surveyor names them.
 struct RunRequest {
-  std::string log_path;          ///< bag, pcap or PCD folder (required)
-  std::string config_path;       ///< YAML configuration; empty = built-in defaults
-  std::string calibration_path;  ///< sensor calibration; empty = calibration.yaml beside the log, if any
-  std::string out_dir;           ///< empty = <log folder>/<log stem>_storey
+  std::string log_path;     ///< bag, pcap or PCD folder (required)
+  std::string config_path;  ///< YAML configuration; empty = built-in defaults
+  std::string
+      calibration_path;  ///< sensor calibration; empty = calibration.yaml beside the log, if any
+  std::string out_dir;   ///< empty = <log folder>/<log stem>_storey
 };
 
 /// The calibration file a run uses: the one given, else `calibration.yaml`
@@ -44,23 +42,6 @@ struct RunOutcome {
 
 /// Checks the log exists, then runs the pipeline (core/pipeline) with
 /// `config`. Throws storey::Error (bad input) or storey::Cancelled.
-RunOutcome runStorey(const RunRequest& request, const Config& config,
-                     const ProgressFn& progress);
-
-/// Storey indices present in `map` (sorted; kNoStorey left out).
-std::vector<int> storeyIndices(const MapCloud& map);
-/// Points of `map` labelled with `storey`.
-std::vector<std::uint32_t> pointsOfStorey(const MapCloud& map, int storey);
-
-/// Which files "Export storeys" writes.
-struct StoreyExportFormats {
-  bool las = true;
-  bool ply = false;
-};
-/// Writes `dir/storey_NN.las|ply` for every storey of `map` with the core's
-/// exporters (core/export/point_cloud_writers.h); returns the paths written.
-/// Throws storey::Error when the map has no storey labels or a write fails.
-std::vector<std::string> exportStoreys(const MapCloud& map, const std::string& dir,
-                                       const StoreyExportFormats& formats);
+RunOutcome runStorey(const RunRequest& request, const Config& config, const ProgressFn& progress);
 
 }  // namespace storey::plugin

@@ -1,8 +1,9 @@
 // `storey info LOG` run as a program: the table of a test-written Velodyne
-// bag, and a one-line error with exit status 1 on bad files.
+// bag, a one-line error with exit status 1 on bad files, and the sensor, spin
+// rate and scans of a real Velodyne capture (skipped when the real data,
+// ../shared/data/real, is absent).
 #include <gtest/gtest.h>
 
-#include "support/run_storey.h"
 #include <sys/wait.h>
 
 #include <array>
@@ -12,7 +13,9 @@
 #include <string>
 #include <vector>
 
+#include "support/run_storey.h"
 #include "unit/io/bag_fixtures.h"
+#include "unit/io_pcap/real_data.h"
 
 namespace storey {
 namespace {
@@ -98,6 +101,22 @@ TEST_F(InfoCli, BadFilesExitOneWithAOneLineMessage) {
     EXPECT_EQ(err.find('\n'), std::string::npos) << "more than one line:\n" << r.err;
     EXPECT_TRUE(contains(err, file));
   }
+}
+
+class PcapInfoCli : public InfoCli {};
+
+TEST_F(PcapInfoCli, ShowsSensorRateAndScans) {
+  const std::string pcap =
+      test::realData("veloview-vlp16-indoor/vlp-16-test-90deg-1-50-frames.pcap");
+  if (!std::filesystem::exists(pcap)) GTEST_SKIP() << "real data absent: " << pcap;
+  const RunResult r = runStorey("info " + quoted(pcap), dir_);
+  const std::string out = r.out + r.err;
+  EXPECT_EQ(r.exit_code, 0) << out;
+  EXPECT_TRUE(contains(out, "Velodyne pcap"));
+  EXPECT_TRUE(contains(out, "VLP-16"));
+  EXPECT_TRUE(contains(out, "rotation     19.9"));
+  EXPECT_TRUE(contains(out, "scan        52"));
+  EXPECT_TRUE(contains(out, "--imu-csv"));  // no IMU: says how to give one
 }
 
 }  // namespace

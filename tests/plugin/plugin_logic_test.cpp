@@ -1,13 +1,9 @@
 // The plugin's logic that needs neither Qt nor CloudCompare: the rectangle
-// shown for each SRP (planes.json itself: tests/unit/export/planes_json_test.cpp), the
-// calibration/output defaults and "Export storeys" through the core writers. Expected values are
-// worked out by hand from the fixtures below.
+// shown for each SRP and the calibration/output defaults. (planes.json itself
+// is tested in tests/unit/export/planes_json_test.cpp, "Export storeys"'
+// writer core/export/storey_files.h in tests/unit/export/storey_files_test.cpp.)
+// Expected values are worked out by hand from the fixtures below.
 #include <gtest/gtest.h>
-
-#include <cstdint>
-#include <cstring>
-#include <filesystem>
-#include <fstream>
 
 #include "PlanePatch.h"
 #include "StoreyRun.h"
@@ -116,52 +112,6 @@ TEST(PluginRun, MissingLogIsAnErrorNamingIt) {
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("/nonexistent/walk.bag"), std::string::npos) << e.what();
   }
-}
-
-MapCloud threePoints() {
-  MapCloud m;
-  for (int i = 0; i < 3; ++i) {
-    m.positions.emplace_back(static_cast<float>(i), 0.f, i == 2 ? 3.f : 0.f);
-    m.intensity.push_back(10.f * static_cast<float>(i));
-    m.time.push_back(100.0 + i);
-    m.keyframe.push_back(i);
-    m.storey.push_back(i == 2 ? 1 : 0);
-    m.flags.push_back(0);
-  }
-  return m;
-}
-
-std::string plyHeader(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::string header, line;
-  while (std::getline(in, line) && line != "end_header") header += line + "\n";
-  return header;
-}
-
-TEST(PluginExport, OneFilePerStoreyWithItsPoints) {
-  test::TempDir dir;
-  StoreyExportFormats formats;
-  formats.las = true;
-  formats.ply = true;
-  const std::vector<std::string> files = exportStoreys(threePoints(), dir.file("out"), formats);
-  ASSERT_EQ(files.size(), 4u);
-  EXPECT_NE(plyHeader(dir.file("out/storey_00.ply")).find("element vertex 2\n"), std::string::npos);
-  EXPECT_NE(plyHeader(dir.file("out/storey_01.ply")).find("element vertex 1\n"), std::string::npos);
-  // LAS 1.4: the 64-bit point count is at byte 247 of the header.
-  std::ifstream las(dir.file("out/storey_00.las"), std::ios::binary);
-  char header[375];
-  ASSERT_TRUE(las.read(header, sizeof(header)));
-  EXPECT_EQ(std::string(header, 4), "LASF");
-  std::uint64_t count = 0;
-  std::memcpy(&count, header + 247, sizeof(count));
-  EXPECT_EQ(count, 2u);
-}
-
-TEST(PluginExport, MapWithoutStoreysIsAnError) {
-  test::TempDir dir;
-  MapCloud m = threePoints();
-  for (auto& s : m.storey) s = kNoStorey;
-  EXPECT_THROW(exportStoreys(m, dir.file("out"), {}), Error);
 }
 
 }  // namespace

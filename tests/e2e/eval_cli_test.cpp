@@ -2,7 +2,6 @@
 // its table and JSON, and a one-line error with exit status 1 on bad input.
 #include <gtest/gtest.h>
 
-#include "support/run_storey.h"
 #include <sys/wait.h>
 
 #include <array>
@@ -13,6 +12,7 @@
 
 #include "eval/eval_report.h"
 #include "sim/mesh.h"
+#include "support/run_storey.h"
 #include "unit/eval/eval_fixtures.h"
 
 namespace storey {

@@ -12,9 +12,9 @@
 
 #include "png_check.h"
 #include "render/palette.h"
-#include "render_fixture.h"
 #include "support/run_storey.h"
 #include "support/temp_dir.h"
+#include "unit/render/render_fixture.h"
 
 namespace storey {
 namespace {
