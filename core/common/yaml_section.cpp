@@ -134,6 +134,14 @@ void YamlSection::read(const std::string& key, std::vector<double>& value,
   value = std::move(parsed);
 }
 
+void YamlSection::readList(const std::string& key, std::vector<double>& value) {
+  const std::optional<YAML::Node> value_node = child(key);
+  if (!value_node) return;
+  const YAML::Node& n = *value_node;
+  if (!n.IsSequence()) fail(key, "must be a list of numbers, got " + scalarText(n));
+  read(key, value, n.size());
+}
+
 void YamlSection::read(const std::string& key, Eigen::Vector3d& value) {
   std::vector<double> v;
   read(key, v, 3);

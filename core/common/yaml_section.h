@@ -28,6 +28,8 @@ class YamlSection {
   void read(const std::string& key, std::string& value);
   void read(const std::string& key, Eigen::Vector3d& value);
   void read(const std::string& key, std::vector<double>& value, std::size_t expected_size);
+  /// A list of numbers of any length.
+  void readList(const std::string& key, std::vector<double>& value);
   /// Like read() but the key must be present.
   template <typename T>
   void require(const std::string& key, T& value) {

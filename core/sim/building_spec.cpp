@@ -55,104 +55,156 @@ void readMount(YamlSection& parent, const std::string& key, Pose& pose) {
   pose = Pose(q, t);
 }
 
-void readLayout(YamlSection s, BuildingLayoutSpec& b) {
-  if (s.has("storey_heights")) {
-    // Any length: read through the node count.
-    std::vector<double> heights;
-    for (std::size_t n = 1; n <= 64 && heights.empty(); ++n) {
-      try {
-        YamlSection probe = s;
-        probe.read("storey_heights", heights, n);
-      } catch (const Error&) {
-        heights.clear();
-      }
-    }
-    if (heights.empty())
-      s.fail("storey_heights", "must be a list of 1 to 64 storey heights in metres");
-    std::vector<double> dummy;
-    s.read("storey_heights", dummy, heights.size());
-    b.storey_heights = heights;
-  } else {
-    s.section("storey_heights");
+// One field list per part of the spec, shared by the reader and the writer
+// (so spec.yaml, written by `storey simulate`, reads back as the same spec).
+// V provides field(key, value), degrees(key, radians), mount(key, pose),
+// list(key, doubles) and section(key, visit).
+
+template <typename V>
+void visitStairwell(V& v, StairwellSpec& s) {
+  v.field("width", s.width);
+  v.field("riser", s.riser);
+  v.field("tread", s.tread);
+  v.field("floor_landing_depth", s.floor_landing_depth);
+  v.field("half_landing_depth", s.half_landing_depth);
+  v.field("position", s.position);
+}
+
+template <typename V>
+void visitLayout(V& v, BuildingLayoutSpec& b) {
+  v.list("storey_heights", b.storey_heights);
+  v.field("slab_thickness", b.slab_thickness);
+  v.field("wall_thickness", b.wall_thickness);
+  v.field("corridor_length", b.corridor_length);
+  v.field("corridor_width", b.corridor_width);
+  v.field("room_depth", b.room_depth);
+  v.field("room_width", b.room_width);
+  v.field("wings", b.wings);
+  v.field("door_width", b.door_width);
+  v.field("door_height", b.door_height);
+  v.field("window_width", b.window_width);
+  v.field("window_sill", b.window_sill);
+  v.field("window_height", b.window_height);
+  v.field("glass_front_fraction", b.glass_front_fraction);
+  v.field("clutter_density", b.clutter_density);
+  v.field("pillar_spacing", b.pillar_spacing);
+  v.section("stairwell", [&](auto& w) { visitStairwell(w, b.stairwell); });
+}
+
+template <typename V>
+void visitRobot(V& v, RobotSpec& r) {
+  v.field("walk_speed", r.walk_speed);
+  v.field("stair_speed", r.stair_speed);
+  v.field("max_accel", r.max_accel);
+  v.field("max_lateral_accel", r.max_lateral_accel);
+  v.degrees("max_yaw_rate_deg", r.max_yaw_rate);
+  v.field("turn_radius", r.turn_radius);
+  v.field("body_height", r.body_height);
+  v.field("lane_offset", r.lane_offset);
+  v.field("still_time", r.still_time);
+  v.field("start_offset", r.start_offset);
+  v.section("gait", [&](auto& g) {
+    g.field("frequency_hz", r.gait.frequency);
+    g.field("bounce", r.gait.bounce);
+    g.degrees("roll_deg", r.gait.roll);
+    g.degrees("pitch_deg", r.gait.pitch);
+  });
+}
+
+template <typename V>
+void visitSensors(V& v, SensorsSpec& s) {
+  v.mount("T_body_lidar", s.T_body_lidar);
+  v.mount("T_body_imu", s.T_body_imu);
+  v.field("start_time", s.start_time);
+  v.field("points_topic", s.points_topic);
+  v.field("imu_topic", s.imu_topic);
+  v.field("lidar_frame_id", s.lidar_frame_id);
+  v.field("imu_frame_id", s.imu_frame_id);
+  v.section("lidar", [&](auto& l) {
+    l.field("model", s.lidar.model);
+    l.field("rotation_rate_hz", s.lidar.rotation_rate);
+    l.field("range_noise", s.lidar.range_noise);
+    l.field("dropout", s.lidar.dropout);
+    l.field("min_range", s.lidar.min_range);
+    l.field("max_range", s.lidar.max_range);
+    l.field("intensity_noise", s.lidar.intensity_noise);
+  });
+  v.section("imu", [&](auto& i) {
+    i.field("rate_hz", s.imu.rate);
+    i.field("gyro_noise_density", s.imu.gyro_noise_density);
+    i.field("accel_noise_density", s.imu.accel_noise_density);
+    i.field("gyro_random_walk", s.imu.gyro_random_walk);
+    i.field("accel_random_walk", s.imu.accel_random_walk);
+    i.field("gravity", s.imu.gravity);
+    i.field("gyro_bias", s.imu.gyro_bias);
+    i.field("accel_bias", s.imu.accel_bias);
+  });
+}
+
+template <typename V>
+void visitSpec(V& v, BuildingSpec& spec) {
+  v.section("building", [&](auto& b) { visitLayout(b, spec.building); });
+  v.section("robot", [&](auto& r) { visitRobot(r, spec.robot); });
+  v.section("sensors", [&](auto& s) { visitSensors(s, spec.sensors); });
+}
+
+struct SpecReader {
+  YamlSection& s;
+  template <typename T>
+  void field(const char* key, T& value) {
+    s.read(key, value);
   }
-  s.read("slab_thickness", b.slab_thickness);
-  s.read("wall_thickness", b.wall_thickness);
-  s.read("corridor_length", b.corridor_length);
-  s.read("corridor_width", b.corridor_width);
-  s.read("room_depth", b.room_depth);
-  s.read("room_width", b.room_width);
-  s.read("wings", b.wings);
-  s.read("door_width", b.door_width);
-  s.read("door_height", b.door_height);
-  s.read("window_width", b.window_width);
-  s.read("window_sill", b.window_sill);
-  s.read("window_height", b.window_height);
-  s.read("glass_front_fraction", b.glass_front_fraction);
-  s.read("clutter_density", b.clutter_density);
-  s.read("pillar_spacing", b.pillar_spacing);
-  YamlSection st = s.section("stairwell");
-  st.read("width", b.stairwell.width);
-  st.read("riser", b.stairwell.riser);
-  st.read("tread", b.stairwell.tread);
-  st.read("floor_landing_depth", b.stairwell.floor_landing_depth);
-  st.read("half_landing_depth", b.stairwell.half_landing_depth);
-  st.read("position", b.stairwell.position);
-  st.finish();
-  s.finish();
-}
+  void degrees(const char* key, double& radians) { readDegrees(s, key, radians); }
+  void mount(const char* key, Pose& pose) { readMount(s, key, pose); }
+  void list(const char* key, std::vector<double>& values) {
+    if (!s.has(key)) {
+      s.section(key);  // mark known
+      return;
+    }
+    std::vector<double> read;
+    s.readList(key, read);
+    if (read.empty()) s.fail(key, "must be a non-empty list of numbers");
+    values = std::move(read);
+  }
+  template <typename F>
+  void section(const char* key, F visit) {
+    YamlSection sub = s.section(key);
+    SpecReader reader{sub};
+    visit(reader);
+    sub.finish();
+  }
+};
 
-void readRobot(YamlSection s, RobotSpec& r) {
-  s.read("walk_speed", r.walk_speed);
-  s.read("stair_speed", r.stair_speed);
-  s.read("max_accel", r.max_accel);
-  s.read("max_lateral_accel", r.max_lateral_accel);
-  readDegrees(s, "max_yaw_rate_deg", r.max_yaw_rate);
-  s.read("turn_radius", r.turn_radius);
-  s.read("body_height", r.body_height);
-  s.read("lane_offset", r.lane_offset);
-  s.read("still_time", r.still_time);
-  s.read("start_offset", r.start_offset);
-  YamlSection g = s.section("gait");
-  g.read("frequency_hz", r.gait.frequency);
-  g.read("bounce", r.gait.bounce);
-  readDegrees(g, "roll_deg", r.gait.roll);
-  readDegrees(g, "pitch_deg", r.gait.pitch);
-  g.finish();
-  s.finish();
-}
-
-void readSensors(YamlSection s, SensorsSpec& sensors) {
-  readMount(s, "T_body_lidar", sensors.T_body_lidar);
-  readMount(s, "T_body_imu", sensors.T_body_imu);
-  s.read("start_time", sensors.start_time);
-  s.read("points_topic", sensors.points_topic);
-  s.read("imu_topic", sensors.imu_topic);
-  s.read("lidar_frame_id", sensors.lidar_frame_id);
-  s.read("imu_frame_id", sensors.imu_frame_id);
-  YamlSection l = s.section("lidar");
-  std::string model = "VLP-16";
-  l.read("model", model);
-  if (model != "VLP-16")
-    l.fail("model", "must be VLP-16 (the only simulated model), got '" + model + "'");
-  l.read("rotation_rate_hz", sensors.lidar.rotation_rate);
-  l.read("range_noise", sensors.lidar.range_noise);
-  l.read("dropout", sensors.lidar.dropout);
-  l.read("min_range", sensors.lidar.min_range);
-  l.read("max_range", sensors.lidar.max_range);
-  l.read("intensity_noise", sensors.lidar.intensity_noise);
-  l.finish();
-  YamlSection i = s.section("imu");
-  i.read("rate_hz", sensors.imu.rate);
-  i.read("gyro_noise_density", sensors.imu.gyro_noise_density);
-  i.read("accel_noise_density", sensors.imu.accel_noise_density);
-  i.read("gyro_random_walk", sensors.imu.gyro_random_walk);
-  i.read("accel_random_walk", sensors.imu.accel_random_walk);
-  i.read("gravity", sensors.imu.gravity);
-  i.read("gyro_bias", sensors.imu.gyro_bias);
-  i.read("accel_bias", sensors.imu.accel_bias);
-  i.finish();
-  s.finish();
-}
+struct SpecWriter {
+  YAML::Emitter& out;
+  template <typename T>
+  void field(const char* key, const T& value) {
+    out << YAML::Key << key << YAML::Value << value;
+  }
+  void field(const char* key, const Eigen::Vector3d& v) {
+    out << YAML::Key << key << YAML::Value << YAML::Flow << YAML::BeginSeq << v.x() << v.y()
+        << v.z() << YAML::EndSeq;
+  }
+  void degrees(const char* key, double radians) { field(key, radians / kDegToRad); }
+  void mount(const char* key, const Pose& pose) {
+    const Eigen::Quaterniond& q = pose.rotation();
+    out << YAML::Key << key << YAML::Value << YAML::BeginMap;
+    field("translation", pose.translation());
+    out << YAML::Key << "rotation_xyzw" << YAML::Value << YAML::Flow << YAML::BeginSeq << q.x()
+        << q.y() << q.z() << q.w() << YAML::EndSeq << YAML::EndMap;
+  }
+  void list(const char* key, const std::vector<double>& values) {
+    out << YAML::Key << key << YAML::Value << YAML::Flow << YAML::BeginSeq;
+    for (double v : values) out << v;
+    out << YAML::EndSeq;
+  }
+  template <typename F>
+  void section(const char* key, F visit) {
+    out << YAML::Key << key << YAML::Value << YAML::BeginMap;
+    visit(*this);
+    out << YAML::EndMap;
+  }
+};
 
 void check(bool ok, const BuildingSpec& spec, const std::string& key, const std::string& what) {
   if (!ok) throw Error(spec.source + ": key '" + key + "' " + what);
@@ -241,6 +293,8 @@ void BuildingSpec::validate() const {
         "must be in [0, max_range)");
   check(l.max_range <= 300.0, *this, "sensors.lidar.max_range", "must be at most 300 m");
   check(l.intensity_noise >= 0.0, *this, "sensors.lidar.intensity_noise", "must be >= 0");
+  check(l.model == "VLP-16", *this, "sensors.lidar.model",
+        "must be VLP-16 (the only simulated model), got '" + l.model + "'");
   const ImuSpec& i = sensors.imu;
   check(i.rate >= 50.0 && i.rate <= 4000.0, *this, "sensors.imu.rate_hz",
         "must be in [50, 4000] Hz");
@@ -255,6 +309,22 @@ void BuildingSpec::validate() const {
         "sensors.points_topic", "must start with '/'");
   check(!sensors.imu_topic.empty() && sensors.imu_topic[0] == '/', *this, "sensors.imu_topic",
         "must start with '/'");
+}
+
+std::string buildingSpecYaml(const BuildingSpec& spec) {
+  BuildingSpec copy = spec;
+  YAML::Emitter out;
+  out.SetDoublePrecision(17);
+  out << YAML::Comment("Storey building spec, format version 1 (see docs/simulator.md)");
+  out << YAML::BeginMap;
+  out << YAML::Key << "format_version" << YAML::Value << 1;
+  out << YAML::Key << "name" << YAML::Value << spec.name;
+  out << YAML::Key << "seed" << YAML::Value << spec.seed;
+  SpecWriter writer{out};
+  visitSpec(writer, copy);
+  out << YAML::EndMap;
+  if (!out.good()) throw Error("building spec: cannot format YAML: " + out.GetLastError());
+  return std::string(out.c_str()) + "\n";
 }
 
 std::vector<std::string> presetNames() {
@@ -288,9 +358,8 @@ BuildingSpec parseBuildingSpec(const std::string& yaml_text, const std::string& 
   int version = 1;
   top.read("format_version", version);
   if (version != 1) top.fail("format_version", "must be 1");
-  readLayout(top.section("building"), spec.building);
-  readRobot(top.section("robot"), spec.robot);
-  readSensors(top.section("sensors"), spec.sensors);
+  SpecReader reader{top};
+  visitSpec(reader, spec);
   top.finish();
   spec.validate();
   return spec;

@@ -65,6 +65,7 @@ struct RobotSpec {
 };
 
 struct LidarSpec {
+  std::string model = "VLP-16";  ///< the simulated sensor
   double rotation_rate = 10.0;   ///< revolutions per second [Hz]
   double range_noise = 0.015;    ///< sigma along the beam [m]
   double dropout = 0.01;         ///< probability a return is lost [0, 1]
@@ -116,6 +117,10 @@ std::string presetText(const std::string& name);
 /// Parses a spec from YAML text; `source` names it in errors. Unknown keys,
 /// wrong types and out-of-range values are storey::Error naming source, key, line.
 BuildingSpec parseBuildingSpec(const std::string& yaml_text, const std::string& source);
+/// The spec as YAML (every key, the format parseBuildingSpec reads; numbers
+/// with 17 digits, mounts as quaternions): parseBuildingSpec(buildingSpecYaml(s))
+/// writes the same text again.
+std::string buildingSpecYaml(const BuildingSpec& spec);
 /// A preset name (see presetNames()) or a path to a YAML file.
 BuildingSpec loadBuildingSpec(const std::string& preset_or_path);
 

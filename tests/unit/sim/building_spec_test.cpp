@@ -20,6 +20,26 @@ TEST(SimSpec, PresetsAreEmbedded) {
   }
 }
 
+TEST(SimSpec, WrittenSpecReadsBackAsTheSameSpec) {
+  for (const std::string& name : presetNames()) {
+    const BuildingSpec spec = loadBuildingSpec(name);
+    const std::string text = buildingSpecYaml(spec);
+    const BuildingSpec read = parseBuildingSpec(text, "written " + name);
+    // A fixed point: the text of what was read is the text that was written.
+    EXPECT_EQ(buildingSpecYaml(read), text) << name;
+    EXPECT_EQ(read.building.storey_heights, spec.building.storey_heights) << name;
+    EXPECT_EQ(read.seed, spec.seed);
+    EXPECT_TRUE(read.sensors.T_body_lidar.isApprox(spec.sensors.T_body_lidar, 1e-15, 1e-15));
+    EXPECT_NEAR(read.robot.gait.roll, spec.robot.gait.roll, 1e-15);
+    EXPECT_EQ(read.sensors.imu.gyro_bias, spec.sensors.imu.gyro_bias);
+  }
+  // A list of any length.
+  BuildingSpec seven = loadBuildingSpec("tiny");
+  seven.building.storey_heights = {4.5, 3.0, 3.1, 3.2, 3.3, 3.4, 2.9};
+  EXPECT_EQ(parseBuildingSpec(buildingSpecYaml(seven), "seven").building.storey_heights,
+            seven.building.storey_heights);
+}
+
 TEST(SimSpec, UnknownKeyNamesKeyAndSource) {
   try {
     parseBuildingSpec("building:\n  corridor_lenght: 10\n", "my.yaml");
