@@ -7,8 +7,9 @@ namespace storey {
 void InputConfig::validate() const {
   requireKey(min_range >= 0.0, "input.min_range", "must be >= 0");
   requireKey(max_range > min_range, "input.max_range", "must be larger than 'input.min_range'");
-  requireKey(velodyne_model == "auto" || velodyne_model == "VLP-16" || velodyne_model == "HDL-32E",
-             "input.velodyne_model", "must be auto, VLP-16 or HDL-32E");
+  requireKey(velodyne_model == "auto" || velodyne_model == "VLP-16" ||
+                 velodyne_model == "VLP-32C" || velodyne_model == "HDL-32E",
+             "input.velodyne_model", "must be auto, VLP-16, VLP-32C or HDL-32E");
   requireKey(pcap_clock == "sensor" || pcap_clock == "capture", "input.pcap_clock",
              "must be sensor or capture");
   requireKey(pcap_data_port >= 0 && pcap_data_port <= 65535, "input.pcap_data_port",

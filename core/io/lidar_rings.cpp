@@ -4,6 +4,8 @@
 #include <cmath>
 #include <map>
 
+#include "io/velodyne/velodyne_tables.h"
+
 namespace storey {
 namespace {
 
@@ -14,6 +16,15 @@ std::vector<double> evenlySpacedDeg(double lowest_deg, double highest_deg, int l
   for (int i = 0; i < lasers; ++i) {
     table[i] = (lowest_deg + (highest_deg - lowest_deg) * i / (lasers - 1)) * kDegToRad;
   }
+  return table;
+}
+
+/// A Velodyne manual's table, ascending [rad].
+std::vector<double> manualTable(velodyne::Model model) {
+  std::vector<double> table;
+  for (const velodyne::Laser& laser : velodyne::defaultCalibration(model).lasers)
+    table.push_back(laser.elevation_deg * kDegToRad);
+  std::sort(table.begin(), table.end());
   return table;
 }
 
@@ -28,6 +39,8 @@ std::vector<double> laserElevations(LidarModel model) {
   switch (model) {
     case LidarModel::kVlp16:
       return evenlySpacedDeg(-15.0, 15.0, 16);
+    case LidarModel::kVlp32c:
+      return manualTable(velodyne::Model::kVlp32c);
     case LidarModel::kHdl32e:
       return evenlySpacedDeg(-92.0 / 3.0, 32.0 / 3.0, 32);
     case LidarModel::kOs1_64:

@@ -13,8 +13,9 @@ namespace storey {
 double elevationOf(const ScanPoint& point);
 
 /// Laser elevations of a known model, ascending [rad] (VLP-16: -15..+15 deg in
-/// 2 deg steps; HDL-32E: -30.67..+10.67 deg, 32 lasers; OS1-64: -16.6..+16.6
-/// deg, 64 lasers evenly spaced). Empty for LidarModel::kGeneric.
+/// 2 deg steps; VLP-32C: -25..+15 deg, 32 lasers, the manual's uneven table;
+/// HDL-32E: -30.67..+10.67 deg, 32 lasers; OS1-64: -16.6..+16.6 deg, 64
+/// lasers evenly spaced). Empty for LidarModel::kGeneric.
 std::vector<double> laserElevations(LidarModel model);
 
 /// Index of the element of `ascending` nearest to `elevation` (ascending not empty).

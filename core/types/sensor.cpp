@@ -10,6 +10,8 @@ const char* toString(LidarModel model) {
   switch (model) {
     case LidarModel::kVlp16:
       return "VLP-16";
+    case LidarModel::kVlp32c:
+      return "VLP-32C";
     case LidarModel::kHdl32e:
       return "HDL-32E";
     case LidarModel::kOs1_64:
@@ -21,11 +23,11 @@ const char* toString(LidarModel model) {
 }
 
 LidarModel lidarModelFromString(const std::string& name) {
-  for (LidarModel m :
-       {LidarModel::kVlp16, LidarModel::kHdl32e, LidarModel::kOs1_64, LidarModel::kGeneric}) {
+  for (LidarModel m : {LidarModel::kVlp16, LidarModel::kVlp32c, LidarModel::kHdl32e,
+                       LidarModel::kOs1_64, LidarModel::kGeneric}) {
     if (name == toString(m)) return m;
   }
-  throw Error("must be one of VLP-16, HDL-32E, OS1-64, generic; got '" + name + "'");
+  throw Error("must be one of VLP-16, VLP-32C, HDL-32E, OS1-64, generic; got '" + name + "'");
 }
 
 void SensorConfig::validate() const {

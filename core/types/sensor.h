@@ -10,9 +10,9 @@
 namespace storey {
 
 /// LiDAR models known to the readers (ring elevations, firing timing).
-enum class LidarModel { kVlp16, kHdl32e, kOs1_64, kGeneric };
+enum class LidarModel { kVlp16, kVlp32c, kHdl32e, kOs1_64, kGeneric };
 const char* toString(LidarModel model);
-/// Parses "VLP-16", "HDL-32E", "OS1-64", "generic"; throws storey::Error otherwise.
+/// Parses "VLP-16", "VLP-32C", "HDL-32E", "OS1-64", "generic"; throws storey::Error otherwise.
 LidarModel lidarModelFromString(const std::string& name);
 
 /// Noise model of the IMU (continuous-time densities, as on datasheets).

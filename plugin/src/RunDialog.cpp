@@ -18,8 +18,9 @@ namespace storey::plugin {
 
 namespace {
 
-constexpr LidarModel kSensorPresets[] = {LidarModel::kVlp16, LidarModel::kHdl32e,
-                                         LidarModel::kOs1_64, LidarModel::kGeneric};
+constexpr LidarModel kSensorPresets[] = {LidarModel::kVlp16, LidarModel::kVlp32c,
+                                         LidarModel::kHdl32e, LidarModel::kOs1_64,
+                                         LidarModel::kGeneric};
 
 }  // namespace
 

@@ -56,10 +56,10 @@ PacketDecoder::PacketDecoder(Calibration calibration, DecodeOptions options)
 
 double PacketDecoder::firingOffset(int block, int sequence, int laser, bool dual) const {
   const int step = dual ? block / 2 : block;  // both blocks of a dual pair are one firing
-  if (calibration_.model == Model::kVlp16) {
-    return (2 * step + sequence) * kVlp16SequenceS + laser * kVlp16FiringS;
-  }
-  return step * kHdl32eSequenceS + laser * kHdl32eFiringS;
+  const Model model = calibration_.model;
+  const int sequences_per_block = model == Model::kVlp16 ? 2 : 1;
+  return (sequences_per_block * step + sequence) * sequencePeriod(model) +
+         laserFiringOffset(model, laser);
 }
 
 PacketProblem PacketDecoder::decode(const std::uint8_t* data, std::size_t size,
@@ -83,7 +83,7 @@ PacketProblem PacketDecoder::decode(const std::uint8_t* data, std::size_t size,
   }
 
   const bool vlp16 = calibration_.model == Model::kVlp16;
-  const int lasers = vlp16 ? 16 : 32;
+  const int lasers = laserCount(calibration_.model);
   const int sequences = vlp16 ? 2 : 1;
   const int blocks_per_step = dual ? 2 : 1;
   const int steps = kBlocksPerPacket / blocks_per_step;
@@ -101,7 +101,7 @@ PacketProblem PacketDecoder::decode(const std::uint8_t* data, std::size_t size,
     if (d > kMaxPlausibleStep) d = s > 0 ? step_rotation[s - 1] : 0;
     step_rotation[s] = d;
   }
-  const double step_duration = vlp16 ? 2 * kVlp16SequenceS : kHdl32eSequenceS;
+  const double step_duration = sequences * sequencePeriod(calibration_.model);
   const double resolution = calibration_.distance_resolution_m;
 
   for (int b = 0; b < kBlocksPerPacket; ++b) {

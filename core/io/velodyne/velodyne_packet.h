@@ -7,7 +7,7 @@
 /// deg, 32 x (distance uint16 in calibration LSBs, intensity uint8)), then the
 /// timestamp (uint32, microseconds past the hour of the first firing of block
 /// 0), the return mode byte and the product id byte. VLP-16 blocks hold two
-/// firing sequences of 16 lasers; HDL-32E blocks one sequence of 32. In dual
+/// firing sequences of 16 lasers; VLP-32C and HDL-32E blocks one sequence of 32. In dual
 /// return mode blocks come in pairs (last, strongest-or-second) of the same firing.
 ///
 /// Point frame (the LiDAR frame, as ROS drivers publish it): x towards

@@ -37,8 +37,9 @@ std::string hex2(std::uint8_t v) {
 
 /// Time spanned by one data packet of `model` [s].
 double packetPeriod(Model model, bool dual) {
+  const int sequences_per_block = model == Model::kVlp16 ? 2 : 1;
   const double single =
-      model == Model::kVlp16 ? 12 * 2 * velodyne::kVlp16SequenceS : 12 * velodyne::kHdl32eSequenceS;
+      velodyne::kBlocksPerPacket * sequences_per_block * velodyne::sequencePeriod(model);
   return dual ? single / 2 : single;
 }
 
@@ -67,6 +68,7 @@ VelodynePcapOptions velodynePcapOptions(const InputConfig& input, const SensorCo
   VelodynePcapOptions o;
   const InputConfig& in = input;
   if (in.velodyne_model == "VLP-16") o.model = Model::kVlp16;
+  if (in.velodyne_model == "VLP-32C") o.model = Model::kVlp32c;
   if (in.velodyne_model == "HDL-32E") o.model = Model::kHdl32e;
   o.calibration_xml = in.velodyne_calibration;
   o.min_range = in.min_range;
@@ -164,14 +166,17 @@ struct VelodynePcapReader::Impl {
                      "give its laser table with input.velodyne_calibration");
         }
         break;
-      case 0x28:
+      case velodyne::kProductVlp32c:
+        probe_.model = Model::kVlp32c;
+        probe_.model_from_product_id = true;
+        break;
       case 0x31:
       case 0xA1:
       case 0x11:
       case 0x12:
-        throw Error(
-            path_ + ": Velodyne product id " + hex2(probe_.product) +
-            " (VLP-32C, VLS-128 or HDL-64E) is not supported; Storey decodes VLP-16 and HDL-32E");
+        throw Error(path_ + ": Velodyne product id " + hex2(probe_.product) +
+                    " (VLS-128 or HDL-64E) is not supported; Storey decodes VLP-16, VLP-32C and "
+                    "HDL-32E");
       default: {
         // 0x21 (HDL-32E, also sent by early VLP-16 firmware) or 0x00: tell the
         // models apart by the time one packet spans.
