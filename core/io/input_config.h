@@ -13,7 +13,7 @@ struct InputConfig {
   std::string imu_csv;  ///< IMU CSV file; empty = none (PCD folder: imu.csv inside it)
   double imu_csv_time_offset =
       0.0;  ///< added to the CSV's stamps to put them on the LiDAR clock [s]
-  std::string velodyne_model = "auto";  ///< pcap: "auto" (from the packets), "VLP-16", "VLP-32C" or "HDL-32E"
+  std::string velodyne_model = "auto";  ///< pcap: auto (from packets), VLP-16, VLP-32C, HDL-32E
   std::string velodyne_calibration;  ///< pcap: VeloView calibration XML; empty = the manual's table
   std::string pcap_clock =
       "sensor";               ///< pcap: "sensor" (packet timestamps) or "capture" (record times)

@@ -91,14 +91,62 @@ void BagWriter::writeScan(const std::string& topic, const Scan& scan, std::int64
   }
 }
 
+void BagWriter::writeOrganisedScan(const std::string& topic, const std::string& frame_id,
+                                   const OrganisedScan& scan, std::int64_t stamp_ns,
+                                   std::int64_t receipt_ns) {
+  sensor_msgs::PointCloud2 msg;
+  msg.header.seq = impl_->scan_seq++;
+  msg.header.stamp = rosTime(stamp_ns);
+  msg.header.frame_id = frame_id;
+  msg.height = static_cast<std::uint32_t>(scan.rows);
+  msg.width = static_cast<std::uint32_t>(scan.columns);
+  for (const CloudField& f : kOusterFields)
+    msg.fields.push_back(field(f.name, f.offset, f.datatype));
+  msg.is_bigendian = false;
+  msg.point_step = kOusterPointStep;
+  msg.row_step = kOusterPointStep * msg.width;
+  msg.is_dense = true;
+  msg.data.assign(static_cast<std::size_t>(msg.row_step) * msg.height, 0);
+  std::uint8_t* out = msg.data.data();
+  for (int row = 0; row < scan.rows; ++row) {
+    const std::uint16_t ring = static_cast<std::uint16_t>(row);
+    for (int column = 0; column < scan.columns; ++column) {
+      const OrganisedPoint& p = scan.at(row, column);
+      std::memcpy(out + 0, &p.p.x(), 4);
+      std::memcpy(out + 4, &p.p.y(), 4);
+      std::memcpy(out + 8, &p.p.z(), 4);
+      std::memcpy(out + 16, &p.intensity, 4);
+      std::memcpy(out + 20, &p.t_ns, 4);
+      std::memcpy(out + 24, &p.reflectivity, 2);
+      std::memcpy(out + 26, &ring, 2);
+      std::memcpy(out + 32, &p.range_mm, 4);  // ambient (28) stays 0: no sunlight indoors
+      out += kOusterPointStep;
+    }
+  }
+  try {
+    impl_->bag.write(topic, rosTime(receipt_ns), msg);
+  } catch (const std::exception& e) {
+    throw Error(path_ + ": cannot write a point cloud: " + e.what());
+  }
+}
+
 void BagWriter::writeImu(const std::string& topic, const std::string& frame_id,
-                         const ImuSample& sample, double gyro_variance, double accel_variance) {
+                         const ImuSample& sample, double gyro_variance, double accel_variance,
+                         const ImuOrientation* orientation) {
   sensor_msgs::Imu msg;
   msg.header.seq = impl_->imu_seq++;
   msg.header.stamp = rosTime(sample.stamp_ns);
   msg.header.frame_id = frame_id;
-  msg.orientation.w = 1.0;
-  msg.orientation_covariance[0] = -1.0;
+  if (orientation != nullptr) {
+    msg.orientation.x = orientation->q_world_imu.x();
+    msg.orientation.y = orientation->q_world_imu.y();
+    msg.orientation.z = orientation->q_world_imu.z();
+    msg.orientation.w = orientation->q_world_imu.w();
+    for (int i = 0; i < 3; ++i) msg.orientation_covariance[4 * i] = orientation->variance[i];
+  } else {
+    msg.orientation.w = 1.0;
+    msg.orientation_covariance[0] = -1.0;
+  }
   msg.angular_velocity.x = sample.gyro.x();
   msg.angular_velocity.y = sample.gyro.y();
   msg.angular_velocity.z = sample.gyro.z();

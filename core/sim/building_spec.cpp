@@ -7,6 +7,7 @@
 #include "common/error.h"
 #include "common/yaml_section.h"
 #include "sim/embedded_presets.h"
+#include "sim/lidar_model.h"
 
 namespace storey::sim {
 namespace {
@@ -55,10 +56,43 @@ void readMount(YamlSection& parent, const std::string& key, Pose& pose) {
   pose = Pose(q, t);
 }
 
+// Named values: the text of each, and back (storey::Error for an unknown name).
+std::string nameOf(LidarModel model) {
+  return toString(model);
+}
+void parseName(const std::string& name, LidarModel& model) {
+  LidarModel parsed = LidarModel::kGeneric;
+  try {
+    parsed = lidarModelFromString(name);
+  } catch (const Error&) {
+  }
+  if (!isSimulatedLidar(parsed)) {
+    throw Error(std::string("must be one of the simulated LiDARs (") + simulatedLidarNames() +
+                "), got '" + name + "'");
+  }
+  model = parsed;
+}
+std::string nameOf(RobotMotion motion) {
+  return toString(motion);
+}
+void parseName(const std::string& name, RobotMotion& motion) {
+  motion = robotMotionFromString(name);
+}
+constexpr const char* kCustomGrade = "custom";
+std::string nameOf(const std::optional<ImuGrade>& grade) {
+  return grade ? toString(*grade) : kCustomGrade;
+}
+void parseName(const std::string& name, std::optional<ImuGrade>& grade) {
+  grade.reset();
+  if (name != kCustomGrade) grade = imuGradeFromString(name);
+}
+
 // One field list per part of the spec, shared by the reader and the writer
 // (so spec.yaml, written by `storey simulate`, reads back as the same spec).
 // V provides field(key, value), degrees(key, radians), mount(key, pose),
-// list(key, doubles) and section(key, visit).
+// list(key, doubles), section(key, visit), choice(key, named value) and
+// preset(key, named value, apply): a named value whose apply(value) sets the
+// defaults of the section's other keys, so it comes first in its section.
 
 template <typename V>
 void visitStairwell(V& v, StairwellSpec& s) {
@@ -93,6 +127,7 @@ void visitLayout(V& v, BuildingLayoutSpec& b) {
 
 template <typename V>
 void visitRobot(V& v, RobotSpec& r) {
+  v.preset("motion", r.motion, [&](RobotMotion m) { r = robotForMotion(m); });
   v.field("walk_speed", r.walk_speed);
   v.field("stair_speed", r.stair_speed);
   v.field("max_accel", r.max_accel);
@@ -109,6 +144,15 @@ void visitRobot(V& v, RobotSpec& r) {
     g.degrees("roll_deg", r.gait.roll);
     g.degrees("pitch_deg", r.gait.pitch);
   });
+  v.section("handheld_gait", [&](auto& g) {
+    g.field("frequency_hz", r.handheld_gait.frequency);
+    g.field("bounce", r.handheld_gait.bounce);
+    g.field("sway", r.handheld_gait.sway);
+    g.degrees("roll_deg", r.handheld_gait.roll);
+    g.degrees("pitch_deg", r.handheld_gait.pitch);
+    g.degrees("yaw_deg", r.handheld_gait.yaw);
+    g.field("slope_pitch", r.handheld_gait.slope_pitch);
+  });
 }
 
 template <typename V>
@@ -121,7 +165,7 @@ void visitSensors(V& v, SensorsSpec& s) {
   v.field("lidar_frame_id", s.lidar_frame_id);
   v.field("imu_frame_id", s.imu_frame_id);
   v.section("lidar", [&](auto& l) {
-    l.field("model", s.lidar.model);
+    l.choice("model", s.lidar.model);
     l.field("rotation_rate_hz", s.lidar.rotation_rate);
     l.field("range_noise", s.lidar.range_noise);
     l.field("dropout", s.lidar.dropout);
@@ -130,6 +174,9 @@ void visitSensors(V& v, SensorsSpec& s) {
     l.field("intensity_noise", s.lidar.intensity_noise);
   });
   v.section("imu", [&](auto& i) {
+    i.preset("grade", s.imu.grade, [&](const std::optional<ImuGrade>& g) {
+      if (g) s.imu = imuGrade(*g, imuGradeRates(*g).max_hz);
+    });
     i.field("rate_hz", s.imu.rate);
     i.field("gyro_noise_density", s.imu.gyro_noise_density);
     i.field("accel_noise_density", s.imu.accel_noise_density);
@@ -138,6 +185,8 @@ void visitSensors(V& v, SensorsSpec& s) {
     i.field("gravity", s.imu.gravity);
     i.field("gyro_bias", s.imu.gyro_bias);
     i.field("accel_bias", s.imu.accel_bias);
+    i.field("orientation", s.imu.orientation);
+    i.degrees("orientation_sigma_deg", s.imu.orientation_sigma);
   });
 }
 
@@ -155,7 +204,33 @@ struct SpecReader {
     s.read(key, value);
   }
   void degrees(const char* key, double& radians) { readDegrees(s, key, radians); }
+  void degrees(const char* key, Eigen::Vector3d& radians) {
+    Eigen::Vector3d degrees = radians / kDegToRad;
+    s.read(key, degrees);
+    radians = degrees * kDegToRad;
+  }
   void mount(const char* key, Pose& pose) { readMount(s, key, pose); }
+  template <typename T>
+  void choice(const char* key, T& value) {
+    std::string name = nameOf(value);
+    s.read(key, name);
+    if (!s.has(key)) return;
+    try {
+      parseName(name, value);
+    } catch (const Error& e) {
+      s.fail(key, e.what());
+    }
+  }
+  template <typename T, typename F>
+  void preset(const char* key, T& value, F apply) {
+    choice(key, value);
+    if (!s.has(key)) return;
+    try {
+      apply(T(value));
+    } catch (const Error& e) {
+      s.fail(key, e.what());
+    }
+  }
   void list(const char* key, std::vector<double>& values) {
     if (!s.has(key)) {
       s.section(key);  // mark known
@@ -186,6 +261,17 @@ struct SpecWriter {
         << v.z() << YAML::EndSeq;
   }
   void degrees(const char* key, double radians) { field(key, radians / kDegToRad); }
+  void degrees(const char* key, const Eigen::Vector3d& radians) {
+    field(key, Eigen::Vector3d(radians / kDegToRad));
+  }
+  template <typename T>
+  void choice(const char* key, const T& value) {
+    field(key, nameOf(value));
+  }
+  template <typename T, typename F>
+  void preset(const char* key, const T& value, F) {
+    choice(key, value);
+  }
   void mount(const char* key, const Pose& pose) {
     const Eigen::Quaterniond& q = pose.rotation();
     out << YAML::Key << key << YAML::Value << YAML::BeginMap;
@@ -205,6 +291,12 @@ struct SpecWriter {
     out << YAML::EndMap;
   }
 };
+
+std::string numberText(double value) {
+  std::ostringstream text;
+  text << value;
+  return text.str();
+}
 
 void check(bool ok, const BuildingSpec& spec, const std::string& key, const std::string& what) {
   if (!ok) throw Error(spec.source + ": key '" + key + "' " + what);
@@ -283,6 +375,17 @@ void BuildingSpec::validate() const {
         "must be in [0, 0.1] m");
   check(std::abs(robot.gait.roll) <= 0.2, *this, "robot.gait.roll_deg", "must be at most 11 deg");
   check(std::abs(robot.gait.pitch) <= 0.2, *this, "robot.gait.pitch_deg", "must be at most 11 deg");
+  const HandheldGaitSpec& h = robot.handheld_gait;
+  check(h.frequency > 0.0 && h.frequency <= 4.0, *this, "robot.handheld_gait.frequency_hz",
+        "must be in (0, 4] Hz");
+  check(h.bounce >= 0.0 && h.bounce <= 0.1, *this, "robot.handheld_gait.bounce",
+        "must be in [0, 0.1] m");
+  check(h.sway >= 0.0 && h.sway <= 0.1, *this, "robot.handheld_gait.sway", "must be in [0, 0.1] m");
+  check(std::abs(h.roll) <= 0.2, *this, "robot.handheld_gait.roll_deg", "must be at most 11 deg");
+  check(std::abs(h.pitch) <= 0.2, *this, "robot.handheld_gait.pitch_deg", "must be at most 11 deg");
+  check(std::abs(h.yaw) <= 0.2, *this, "robot.handheld_gait.yaw_deg", "must be at most 11 deg");
+  check(h.slope_pitch >= 0.0 && h.slope_pitch <= 1.0, *this, "robot.handheld_gait.slope_pitch",
+        "must be in [0, 1]");
   const LidarSpec& l = sensors.lidar;
   check(l.rotation_rate >= 5.0 && l.rotation_rate <= 20.0, *this, "sensors.lidar.rotation_rate_hz",
         "must be in [5, 20] Hz");
@@ -293,8 +396,10 @@ void BuildingSpec::validate() const {
         "must be in [0, max_range)");
   check(l.max_range <= 300.0, *this, "sensors.lidar.max_range", "must be at most 300 m");
   check(l.intensity_noise >= 0.0, *this, "sensors.lidar.intensity_noise", "must be >= 0");
-  check(l.model == "VLP-16", *this, "sensors.lidar.model",
-        "must be VLP-16 (the only simulated model), got '" + l.model + "'");
+  check(isSimulatedLidar(l.model), *this, "sensors.lidar.model",
+        std::string("must be one of the simulated LiDARs (") + simulatedLidarNames() + ")");
+  check(l.model != LidarModel::kOs1_64 || l.rotation_rate == 10.0 || l.rotation_rate == 20.0, *this,
+        "sensors.lidar.rotation_rate_hz", "must be 10 or 20 Hz for an OS1-64");
   const ImuSpec& i = sensors.imu;
   check(i.rate >= 50.0 && i.rate <= 4000.0, *this, "sensors.imu.rate_hz",
         "must be in [50, 4000] Hz");
@@ -303,6 +408,14 @@ void BuildingSpec::validate() const {
         *this, "sensors.imu", "noise densities must be >= 0");
   check(i.gravity > 9.7 && i.gravity < 9.9, *this, "sensors.imu.gravity",
         "must be in (9.7, 9.9) m/s^2");
+  if (i.grade) {
+    const ImuRateRange rates = imuGradeRates(*i.grade);
+    check(i.rate >= rates.min_hz && i.rate <= rates.max_hz, *this, "sensors.imu.rate_hz",
+          std::string("must be in [") + numberText(rates.min_hz) + ", " + numberText(rates.max_hz) +
+              "] Hz for a " + toString(*i.grade) + " IMU");
+  }
+  check(i.orientation_sigma.minCoeff() >= 0.0 && i.orientation_sigma.maxCoeff() <= 0.5, *this,
+        "sensors.imu.orientation_sigma_deg", "values must be in [0, 28] deg");
   check(sensors.start_time >= 1.0 && sensors.start_time < 4.0e9, *this, "sensors.start_time",
         "must be in [1, 4e9) s");
   check(!sensors.points_topic.empty() && sensors.points_topic[0] == '/', *this,

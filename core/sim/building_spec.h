@@ -5,10 +5,12 @@
 /// a default; docs/simulator.md lists the YAML keys.
 #include <Eigen/Core>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "types/pose.h"
+#include "types/sensor.h"
 
 namespace storey::sim {
 
@@ -43,6 +45,15 @@ struct BuildingLayoutSpec {
   StairwellSpec stairwell;
 };
 
+/// How the sensors are carried: the kind of walk, and the defaults of RobotSpec.
+enum class RobotMotion {
+  kLegged,    ///< a quadruped trotting, sensors on its body (GaitSpec)
+  kHandheld,  ///< a person walking with the sensors in hand (HandheldGaitSpec)
+};
+const char* toString(RobotMotion motion);
+/// "legged" or "handheld"; storey::Error listing them otherwise.
+RobotMotion robotMotionFromString(const std::string& name);
+
 struct GaitSpec {
   double frequency = 2.5;  ///< trot frequency [Hz]
   double bounce = 0.015;   ///< vertical amplitude [m]
@@ -50,7 +61,25 @@ struct GaitSpec {
   double pitch = 0.014;    ///< pitch amplitude [rad] (YAML: degrees)
 };
 
+/// A hand-held sensor on a walking person (defaults: docs/simulator.md,
+/// "Handheld walking"). Step-frequency terms repeat every step, stride terms
+/// every two steps (left, right).
+struct HandheldGaitSpec {
+  double frequency = 1.9;    ///< step frequency [Hz]
+  double bounce = 0.02;      ///< vertical amplitude, step frequency (peak to peak 2x) [m]
+  double sway = 0.015;       ///< lateral amplitude, stride frequency [m]
+  double slope_pitch = 0.5;  ///< share of the stair slope the device pitches with [0, 1]
+  /// Roll amplitude, stride frequency [rad] (YAML: degrees; 2).
+  double roll = 0.03490658503988659;
+  /// Pitch amplitude, step frequency [rad] (YAML: degrees; 1.5).
+  double pitch = 0.02617993877991494;
+  /// Yaw amplitude, stride frequency [rad] (YAML: degrees; 1.5).
+  double yaw = 0.02617993877991494;
+};
+
 struct RobotSpec {
+  /// Which gait rides on the walk; robotForMotion() gives each one's defaults.
+  RobotMotion motion = RobotMotion::kLegged;
   double walk_speed = 0.8;          ///< cruise speed on floors [m/s]
   double stair_speed = 0.3;         ///< speed along the stair slope [m/s]
   double max_accel = 0.4;           ///< along the path [m/s^2]
@@ -61,11 +90,19 @@ struct RobotSpec {
   double lane_offset = 0.35;        ///< walking lanes at +-offset from the corridor axis [m]
   double still_time = 2.0;          ///< standing still at start and end [s]
   double start_offset = 2.5;        ///< start position from the west end of the corridor [m]
-  GaitSpec gait;
+  GaitSpec gait;                    ///< motion kLegged
+  /// Motion kHandheld.
+  HandheldGaitSpec handheld_gait;
 };
 
+/// The robot defaults of a motion: kLegged the RobotSpec defaults; kHandheld
+/// a person's walk (1.0 m/s, 0.5 m/s on stairs, turns up to 90 deg/s, the
+/// sensors 1.2 m above the floor).
+RobotSpec robotForMotion(RobotMotion motion);
+
 struct LidarSpec {
-  std::string model = "VLP-16";  ///< the simulated sensor
+  /// The simulated sensor (sim/lidar_model.h; not kGeneric).
+  LidarModel model = LidarModel::kVlp16;
   double rotation_rate = 10.0;   ///< revolutions per second [Hz]
   double range_noise = 0.015;    ///< sigma along the beam [m]
   double dropout = 0.01;         ///< probability a return is lost [0, 1]
@@ -74,7 +111,18 @@ struct LidarSpec {
   double intensity_noise = 2.0;  ///< sigma [sensor units]
 };
 
+/// Named classes of IMU, with noise figures from a datasheet (imuGrade()).
+enum class ImuGrade {
+  kTactical,  ///< industrial/tactical MEMS, Xsens MTi-300 class, 200-400 Hz
+  kConsumer,  ///< consumer MEMS, Bosch BMI088 class, 100-200 Hz
+};
+const char* toString(ImuGrade grade);
+/// "tactical" or "consumer"; storey::Error listing them otherwise.
+ImuGrade imuGradeFromString(const std::string& name);
+
 struct ImuSpec {
+  /// The class the values come from; empty = "custom" (the values as given).
+  std::optional<ImuGrade> grade;
   double rate = 400.0;                               ///< [Hz]
   double gyro_noise_density = 1.75e-4;               ///< [rad/s/sqrt(Hz)]
   double accel_noise_density = 5.9e-4;               ///< [m/s^2/sqrt(Hz)]
@@ -83,7 +131,23 @@ struct ImuSpec {
   double gravity = 9.81;                             ///< [m/s^2]
   Eigen::Vector3d gyro_bias{0.002, -0.0015, 0.001};  ///< initial bias [rad/s]
   Eigen::Vector3d accel_bias{0.03, -0.02, 0.04};     ///< initial bias [m/s^2]
+  /// sensor_msgs/Imu carries the orientation (true R_world_imu) with
+  /// orientation_sigma as its covariance; false: orientation_covariance[0] = -1.
+  bool orientation = false;
+  /// Roll, pitch, yaw standard deviation stated with the orientation [rad]
+  /// (YAML: degrees; 0.3, 0.3, 1).
+  Eigen::Vector3d orientation_sigma{0.005235987755982988, 0.005235987755982988,
+                                    0.017453292519943295};
 };
+
+/// The ImuSpec of a grade at `rate_hz` (datasheet figures: docs/simulator.md,
+/// "IMU grades"); storey::Error when the rate is outside the grade's range.
+ImuSpec imuGrade(ImuGrade grade, double rate_hz);
+/// The output rates of a grade's class [Hz]; the top one is its nominal rate.
+struct ImuRateRange {
+  double min_hz = 0.0, max_hz = 0.0;
+};
+ImuRateRange imuGradeRates(ImuGrade grade);
 
 struct SensorsSpec {
   Pose T_body_lidar{Eigen::Quaterniond::Identity(), Eigen::Vector3d(0.25, 0.0, 0.12)};

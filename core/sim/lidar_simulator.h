@@ -1,15 +1,22 @@
 #pragma once
-/// VLP-16 simulation: every laser firing is ray-cast from the sensor pose at
-/// its own firing time, so scans are motion-distorted like real ones.
-/// Firing sequence k fires at k * 55.296 us from the start of the simulation;
-/// a scan holds the firings of one revolution [n / rate, (n + 1) / rate) and
-/// its stamp is the time of its first firing (the driver's stamp with
-/// timestamp_first_packet), so per-point times are in [0, 1 / rate).
+/// Spinning-LiDAR simulation (the models of sim/lidar_model.h): every beam is
+/// ray-cast from the sensor pose at its own firing time, so scans are
+/// motion-distorted like real ones.
+/// Velodyne: firing sequence k fires at k * period from the start of the
+/// simulation (VLP-16 and VLP-32C 55.296 us, HDL-32E 46.08 us); a scan holds
+/// the sequences starting in one revolution [n / rate, (n + 1) / rate) and its
+/// stamp is the time of its first firing (the driver's stamp with
+/// timestamp_first_packet). Ouster: column k fires every beam at once at
+/// round(k / (columns * rate)); scan n is columns [n, n + 1) * columns and is
+/// stamped with its first column (n / rate). Per-point times are in [0, 1 / rate).
 /// Azimuth: pi (straight back) at t = 0, turning clockwise seen from above.
+#include <Eigen/Core>
 #include <cstdint>
 #include <vector>
 
 #include "sim/building_spec.h"
+#include "sim/lidar_model.h"
+#include "sim/organised_scan.h"
 #include "sim/raycaster.h"
 #include "sim/trajectory.h"
 #include "sim/vlp16.h"
@@ -21,14 +28,16 @@ struct LidarNoise {
   double range_sigma = 0.0;      ///< [m]
   double dropout = 0.0;          ///< probability [0, 1)
   double intensity_sigma = 0.0;  ///< [sensor units]
-  bool quantize = false;         ///< report ranges in the sensor's 2 mm steps
+  bool quantize = false;  ///< report ranges in the sensor's steps (LidarBeams::distance_step)
 };
 
 class LidarSimulator {
  public:
+  /// Simulates sensors.lidar.model (storey::Error when it has no model).
   LidarSimulator(const TriangleMesh& mesh, const Trajectory& trajectory, const SensorsSpec& sensors,
                  const LidarNoise& noise, std::uint64_t seed);
 
+  const LidarBeams& beams() const { return beams_; }
   /// Number of complete revolutions within [0, duration].
   int scanCount(double duration) const;
   /// Stamp of scan n relative to the start of the simulation [ns].
@@ -37,17 +46,22 @@ class LidarSimulator {
   std::int64_t scanEndNs(int n) const;
   /// Simulates scan n; Scan::stamp_ns is relative to the start of the
   /// simulation (add the start time). Thread-safe; deterministic per (seed, n).
-  /// `firings` (optional) receives the scan's firing sequences as the sensor
-  /// reports them (no-returns as distance 0, times relative to the start of
-  /// the simulation): the same returns as the scan's points, for a Velodyne
-  /// capture of the log.
-  Scan simulateScan(int n, std::vector<vlp16::FiringSequence>* firings = nullptr) const;
+  /// Scan::points are the returns in firing order, ring 0 = lowest beam.
+  /// `firings` (optional, VLP-16 only, else storey::Error) receives the scan's
+  /// firing sequences as the sensor reports them (no-returns as distance 0,
+  /// times relative to the start of the simulation): the same returns as the
+  /// scan's points, for a Velodyne capture of the log. `organised` (optional)
+  /// receives every beam of every column, no-returns included.
+  Scan simulateScan(int n, std::vector<vlp16::FiringSequence>* firings = nullptr,
+                    OrganisedScan* organised = nullptr) const;
 
  private:
   std::int64_t firstSequence(int n) const;
+  std::int64_t sequenceStartNs(std::int64_t k) const;
   const Trajectory& trajectory_;
   Pose T_body_lidar_;
   LidarSpec spec_;
+  LidarBeams beams_;
   LidarNoise noise_;
   std::uint64_t seed_;
   std::int64_t revolution_ns_;

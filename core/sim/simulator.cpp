@@ -75,7 +75,7 @@ void writeCalibration(const std::string& path, const BuildingSpec& spec) {
   const SensorsSpec& s = spec.sensors;
   calibration.sensor.T_imu_lidar = s.T_body_imu.inverse() * s.T_body_lidar;
   calibration.sensor.time_offset_lidar_to_imu = 0.0;
-  calibration.sensor.lidar_model = LidarModel::kVlp16;
+  calibration.sensor.lidar_model = s.lidar.model;
   calibration.sensor.imu.rate_hz = s.imu.rate;
   calibration.sensor.imu.gravity = s.imu.gravity;
   calibration.sensor.imu.gyro_noise_density = s.imu.gyro_noise_density;
@@ -147,6 +147,12 @@ SimulationResult simulate(const BuildingSpec& spec, const SimulationOptions& opt
   if (out_dir.empty()) throw Error("simulator: no output folder given");
   if (!options.formats.bag && !options.formats.pcap)
     throw Error("simulator: no log format chosen (a bag, a pcap or both)");
+  if (options.formats.pcap && spec.sensors.lidar.model != LidarModel::kVlp16) {
+    throw Error(spec.source +
+                ": the Velodyne capture (pcap) is written for a VLP-16 only; "
+                "sensors.lidar.model is " +
+                toString(spec.sensors.lidar.model));
+  }
   report(progress, 0.0, "building");
   const World world = makeWorld(spec);
   const Trajectory& trajectory = world.trajectory;
@@ -212,9 +218,15 @@ SimulationResult simulate(const BuildingSpec& spec, const SimulationOptions& opt
   auto writeImuUntil = [&](std::int64_t t_ns) {
     if (!bag) return;
     while (next_imu < imu.samples.size() && imu.samples[next_imu].stamp_ns <= t_ns) {
+      ImuOrientation orientation;
+      if (sensors.imu.orientation) {
+        orientation.q_world_imu = imu.T_world_imu[next_imu].rotation();
+        orientation.variance = sensors.imu.orientation_sigma.cwiseAbs2();
+      }
       ImuSample sample = imu.samples[next_imu++];
       sample.stamp_ns += start_ns;
-      bag->writeImu(sensors.imu_topic, sensors.imu_frame_id, sample, gyro_variance, accel_variance);
+      bag->writeImu(sensors.imu_topic, sensors.imu_frame_id, sample, gyro_variance, accel_variance,
+                    sensors.imu.orientation ? &orientation : nullptr);
     }
   };
 
@@ -229,16 +241,21 @@ SimulationResult simulate(const BuildingSpec& spec, const SimulationOptions& opt
   struct Chunk {
     std::vector<Scan> scans;
     std::vector<std::vector<vlp16::FiringSequence>> firings;  ///< per scan, for the pcap
+    std::vector<OrganisedScan> organised;                     ///< per scan, Ouster layout
   };
   const bool want_firings = pcap != nullptr;
+  const bool organised = lidar.beams().layout == CloudLayout::kOuster;
+  const bool want_organised = organised && bag != nullptr;
   auto castChunk = [&](int first) {
     Chunk out;
     const auto size = static_cast<std::size_t>(std::max(0, std::min(chunk, scan_count - first)));
     out.scans.resize(size);
     if (want_firings) out.firings.resize(size);
+    if (want_organised) out.organised.resize(size);
     arena.execute([&] {
       tbb::parallel_for(0, static_cast<int>(size), [&](int i) {
-        out.scans[i] = lidar.simulateScan(first + i, want_firings ? &out.firings[i] : nullptr);
+        out.scans[i] = lidar.simulateScan(first + i, want_firings ? &out.firings[i] : nullptr,
+                                          want_organised ? &out.organised[i] : nullptr);
       });
     });
     return out;
@@ -259,7 +276,12 @@ SimulationResult simulate(const BuildingSpec& spec, const SimulationOptions& opt
                    trajectory.frame(scan.stamp_ns * 1e-9, sensors.T_body_lidar).T_world_frame);
       result.points += static_cast<std::int64_t>(scan.points.size());
       scan.stamp_ns += start_ns;
-      if (bag) bag->writeScan(sensors.points_topic, scan, start_ns + receipt_ns);
+      if (bag && organised) {
+        bag->writeOrganisedScan(sensors.points_topic, scan.frame_id, cast.organised[i],
+                                scan.stamp_ns, start_ns + receipt_ns);
+      } else if (bag) {
+        bag->writeScan(sensors.points_topic, scan, start_ns + receipt_ns);
+      }
       if (pcap) {
         for (const vlp16::FiringSequence& firing : cast.firings[i]) pcap->add(firing);
       }

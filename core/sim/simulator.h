@@ -1,7 +1,8 @@
 #pragma once
-/// `storey simulate`: building spec -> building mesh, legged-robot walk,
-/// VLP-16 and IMU logs in a ROS1 bag and/or a Velodyne capture (pcap) with an
-/// IMU CSV, ground truth. See docs/simulator.md.
+/// `storey simulate`: building spec -> building mesh, a legged robot's or a
+/// person's walk, LiDAR (VLP-16, VLP-32C, HDL-32E, OS1-64) and IMU logs in a
+/// ROS1 bag and/or (VLP-16) a Velodyne capture (pcap) with an IMU CSV, ground
+/// truth. See docs/simulator.md.
 ///
 /// World frame of every output: z up (gravity (0, 0, -g)), x = the robot's
 /// initial heading, origin at the LiDAR's start position.

@@ -50,6 +50,11 @@ struct AxisRotation {
   }
 };
 
+/// A scalar and its first and second time derivatives.
+struct Jet {
+  double v = 0.0, d = 0.0, dd = 0.0;
+};
+
 /// g(t) = w(t) * amplitude * sin(omega t + phase) and its two derivatives.
 void gaitTerm(double w, double dw, double ddw, double amplitude, double omega, double phase,
               double t, double& g, double& dg, double& ddg) {
@@ -57,6 +62,30 @@ void gaitTerm(double w, double dw, double ddw, double amplitude, double omega, d
   g = w * amplitude * s;
   dg = amplitude * (dw * s + w * omega * c);
   ddg = amplitude * (ddw * s + 2.0 * dw * omega * c - w * omega * omega * s);
+}
+
+Jet gaitJet(double w, double dw, double ddw, double amplitude, double omega, double phase,
+            double t) {
+  Jet g;
+  gaitTerm(w, dw, ddw, amplitude, omega, phase, t, g.v, g.d, g.dd);
+  return g;
+}
+
+/// The kinematics of R = A B C and position p (derivatives v, a).
+FrameKinematics composeKinematics(const AxisRotation& A, const AxisRotation& B,
+                                  const AxisRotation& C, const Vector3d& p, const Vector3d& v,
+                                  const Vector3d& a) {
+  FrameKinematics k;
+  k.v_world = v;
+  k.a_world = a;
+  const Matrix3d R = A.R * B.R * C.R;
+  k.dR = A.dR * B.R * C.R + A.R * B.dR * C.R + A.R * B.R * C.dR;
+  k.ddR = A.ddR * B.R * C.R + A.R * B.ddR * C.R + A.R * B.R * C.ddR +
+          2.0 * (A.dR * B.dR * C.R + A.dR * B.R * C.dR + A.R * B.dR * C.dR);
+  const Matrix3d W = R.transpose() * k.dR;  // skew(omega_body)
+  k.omega_frame = 0.5 * Vector3d(W(2, 1) - W(1, 2), W(0, 2) - W(2, 0), W(1, 0) - W(0, 1));
+  k.T_world_frame = Pose(R, p);
+  return k;
 }
 
 /// Dense path with rounded corners (circular fillets) and speed limits.
@@ -153,7 +182,11 @@ std::vector<PathSample> densePath(const std::vector<RouteVertex>& route, const R
 }  // namespace
 
 Trajectory::Trajectory(const std::vector<RouteVertex>& route, const RobotSpec& robot)
-    : dt_(kControlInterval), still_time_(robot.still_time), gait_(robot.gait) {
+    : dt_(kControlInterval),
+      still_time_(robot.still_time),
+      motion_(robot.motion),
+      gait_(robot.gait),
+      handheld_gait_(robot.handheld_gait) {
   const std::vector<PathSample> path = densePath(route, robot);
   path_length_ = path.back().s;
   const double walk_time = path.back().t;
@@ -235,27 +268,54 @@ FrameKinematics Trajectory::body(double t) const {
   t = std::clamp(t, 0.0, duration_);
   Channels c, dc, ddc;
   evalSpline(t, c, dc, ddc);
+  return motion_ == RobotMotion::kHandheld ? handheld(t, c, dc, ddc) : legged(t, c, dc, ddc);
+}
+
+FrameKinematics Trajectory::legged(double t, const Channels& c, const Channels& dc,
+                                   const Channels& ddc) const {
   const double omega = 2.0 * M_PI * gait_.frequency;
   double bz, dbz, ddbz, roll, droll, ddroll, gp, dgp, ddgp;
   gaitTerm(c[5], dc[5], ddc[5], gait_.bounce, omega, 0.0, t, bz, dbz, ddbz);
   gaitTerm(c[5], dc[5], ddc[5], gait_.roll, omega, 0.5 * M_PI, t, roll, droll, ddroll);
   gaitTerm(c[5], dc[5], ddc[5], gait_.pitch, omega, 0.25 * M_PI, t, gp, dgp, ddgp);
 
-  FrameKinematics k;
   const Vector3d p(c[0], c[1], c[2] + bz);
-  k.v_world = Vector3d(dc[0], dc[1], dc[2] + dbz);
-  k.a_world = Vector3d(ddc[0], ddc[1], ddc[2] + ddbz);
   const AxisRotation A(Vector3d::UnitZ(), c[3], dc[3], ddc[3]);
   const AxisRotation B(Vector3d::UnitY(), c[4] + gp, dc[4] + dgp, ddc[4] + ddgp);
   const AxisRotation C(Vector3d::UnitX(), roll, droll, ddroll);
-  const Matrix3d R = A.R * B.R * C.R;
-  k.dR = A.dR * B.R * C.R + A.R * B.dR * C.R + A.R * B.R * C.dR;
-  k.ddR = A.ddR * B.R * C.R + A.R * B.ddR * C.R + A.R * B.R * C.ddR +
-          2.0 * (A.dR * B.dR * C.R + A.dR * B.R * C.dR + A.R * B.dR * C.dR);
-  const Matrix3d W = R.transpose() * k.dR;  // skew(omega_body)
-  k.omega_frame = 0.5 * Vector3d(W(2, 1) - W(1, 2), W(0, 2) - W(2, 0), W(1, 0) - W(0, 1));
-  k.T_world_frame = Pose(R, p);
-  return k;
+  return composeKinematics(A, B, C, p, Vector3d(dc[0], dc[1], dc[2] + dbz),
+                           Vector3d(ddc[0], ddc[1], ddc[2] + ddbz));
+}
+
+FrameKinematics Trajectory::handheld(double t, const Channels& c, const Channels& dc,
+                                     const Channels& ddc) const {
+  const HandheldGaitSpec& g = handheld_gait_;
+  // Steps (bounce, pitch) at the step frequency; sway, roll and yaw once per
+  // stride (two steps), swinging towards the stance foot.
+  const double step = 2.0 * M_PI * g.frequency, stride = 0.5 * step;
+  const double w = c[5], dw = dc[5], ddw = ddc[5];
+  const Jet bounce = gaitJet(w, dw, ddw, g.bounce, step, 0.0, t);
+  const Jet pitch = gaitJet(w, dw, ddw, g.pitch, step, 0.5 * M_PI, t);
+  const Jet sway = gaitJet(w, dw, ddw, g.sway, stride, 0.0, t);
+  const Jet roll = gaitJet(w, dw, ddw, g.roll, stride, 0.0, t);
+  const Jet yaw = gaitJet(w, dw, ddw, g.yaw, stride, 0.5 * M_PI, t);
+
+  // Sideways along the path's heading: o = H(yaw) e_y sway.
+  const AxisRotation H(Vector3d::UnitZ(), c[3], dc[3], ddc[3]);
+  const Vector3d e = H.R.col(1), de = H.dR.col(1), dde = H.ddR.col(1);
+  const Vector3d o = e * sway.v;
+  const Vector3d d_o = de * sway.v + e * sway.d;
+  const Vector3d dd_o = dde * sway.v + 2.0 * de * sway.d + e * sway.dd;
+  const Vector3d p = Vector3d(c[0], c[1], c[2] + bounce.v) + o;
+  const Vector3d v = Vector3d(dc[0], dc[1], dc[2] + bounce.d) + d_o;
+  const Vector3d a = Vector3d(ddc[0], ddc[1], ddc[2] + bounce.dd) + dd_o;
+
+  const double k = g.slope_pitch;
+  const AxisRotation A(Vector3d::UnitZ(), c[3] + yaw.v, dc[3] + yaw.d, ddc[3] + yaw.dd);
+  const AxisRotation B(Vector3d::UnitY(), k * c[4] + pitch.v, k * dc[4] + pitch.d,
+                       k * ddc[4] + pitch.dd);
+  const AxisRotation C(Vector3d::UnitX(), roll.v, roll.d, roll.dd);
+  return composeKinematics(A, B, C, p, v, a);
 }
 
 FrameKinematics Trajectory::frame(double t, const Pose& T_body_frame) const {

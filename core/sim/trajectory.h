@@ -1,8 +1,10 @@
 #pragma once
 /// The robot's body trajectory: a C4-smooth path (uniform quintic B-spline of
 /// position, yaw, path pitch and gait weight sampled from a time-optimal walk
-/// along the route) with a trot gait on top. Everything is analytic: pose,
-/// velocity, acceleration and the rotation's first and second derivatives.
+/// along the route) with a gait on top: a quadruped's trot (RobotMotion
+/// kLegged) or a person's steps carrying the sensors by hand (kHandheld).
+/// Everything is analytic: pose, velocity, acceleration and the rotation's
+/// first and second derivatives.
 /// Body frame: x forward, y left, z up; R_world_body = Rz(yaw) Ry(pitch) Rx(roll).
 #include <Eigen/Core>
 #include <array>
@@ -47,13 +49,19 @@ class Trajectory {
   using Channels = Eigen::Matrix<double, kChannels, 1>;
   /// Value, first and second time derivative of the B-spline channels.
   void evalSpline(double t, Channels& c, Channels& dc, Channels& ddc) const;
+  FrameKinematics legged(double t, const Channels& c, const Channels& dc,
+                         const Channels& ddc) const;
+  FrameKinematics handheld(double t, const Channels& c, const Channels& dc,
+                           const Channels& ddc) const;
 
   std::vector<Channels> control_;  ///< control point k peaks at time (k - 2) * dt_
   double dt_ = 0.05;
   double duration_ = 0.0;
   double path_length_ = 0.0;
   double still_time_ = 0.0;
+  RobotMotion motion_ = RobotMotion::kLegged;
   GaitSpec gait_;
+  HandheldGaitSpec handheld_gait_;
 };
 
 /// Specific force measured by an accelerometer on this frame: R^T (a - g_world),

@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "common/error.h"
@@ -48,6 +49,13 @@ TEST(IoLidarRings, ModelTables) {
   ASSERT_EQ(hdl.size(), 32u);
   EXPECT_NEAR(hdl.front(), -30.67 * kDeg, 0.01 * kDeg);
   EXPECT_NEAR(hdl.back(), 10.67 * kDeg, 0.01 * kDeg);
+  const auto vlp32c = laserElevations(LidarModel::kVlp32c);  // uneven, ascending
+  ASSERT_EQ(vlp32c.size(), 32u);
+  EXPECT_TRUE(std::is_sorted(vlp32c.begin(), vlp32c.end()));
+  EXPECT_NEAR(vlp32c.front(), -25 * kDeg, 1e-12);
+  EXPECT_NEAR(vlp32c[1], -15.639 * kDeg, 1e-12);
+  EXPECT_NEAR(vlp32c[20], 0.0, 1e-12);  // 20 lasers below the horizon
+  EXPECT_NEAR(vlp32c.back(), 15 * kDeg, 1e-12);
   const auto os1 = laserElevations(LidarModel::kOs1_64);
   ASSERT_EQ(os1.size(), 64u);
   EXPECT_NEAR(os1.front(), -16.6 * kDeg, 1e-12);

@@ -3,6 +3,7 @@
 // traffic, a file cut in a record, packets out of order, nothing usable).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -267,6 +268,47 @@ TEST_F(PcapReader, DualReturnPairsShareTheirFiringTime) {
       EXPECT_NEAR(other.distance, 7.0, 1e-3);
     }
   }
+}
+
+/// VLP-32C packets (product id 0x28): one firing sequence per block, laser
+/// pairs every 2.304 us, 4 mm distance steps, the manual's uneven table with
+/// its azimuth offsets.
+TEST_F(PcapReader, Vlp32cPacketsUseItsTableTimingAndDistanceStep) {
+  const velodyne::Calibration table = velodyne::defaultCalibration(velodyne::Model::kVlp32c);
+  const velodyne::PacketDecoder decoder(table, {});
+  auto bytes = test::vlp16Packet(1000, 1000, 20, 5.0);  // every channel: 2500 steps
+  bytes[1205] = velodyne::kProductVlp32c;
+  velodyne::DataPacket packet;
+  ASSERT_EQ(decoder.decode(bytes.data(), bytes.size(), packet), velodyne::PacketProblem::kNone);
+  ASSERT_EQ(packet.returns.size(), 12u * 32u);
+  for (const velodyne::Return& r : packet.returns) {
+    ASSERT_EQ(r.sequence, 0);
+    EXPECT_NEAR(r.distance, 2500 * 0.004, 1e-5);
+    EXPECT_NEAR(r.time_offset_s, r.block * 55.296e-6 + (r.laser / 2) * 2.304e-6, 1e-12);
+    const velodyne::Laser& laser = table.lasers[r.laser];
+    EXPECT_NEAR(std::asin(r.z / r.distance) * 180 / M_PI, laser.elevation_deg, 1e-4);
+    // Block azimuth, the rotation until the pair fired (0.2 deg per block), the offset.
+    const double azimuth = (1000 + 20 * r.block) * 0.01 + 0.2 * ((r.laser / 2) * 2.304 / 55.296) -
+                           laser.azimuth_offset_deg;
+    EXPECT_NEAR(r.azimuth_deg, azimuth, 1e-4);
+  }
+  EXPECT_NEAR(table.lasers[0].elevation_deg, -25.0, 1e-12);
+  EXPECT_NEAR(table.lasers[0].azimuth_offset_deg, -1.4, 1e-12);  // VeloView's rotCorrection
+
+  // The reader tells the model from the product id.
+  auto records = test::vlp16Capture(0.25, 10.0, 1'000'000);
+  for (PcapRecord& record : records) record.frame[42 + 1205] = velodyne::kProductVlp32c;
+  test::writePcap(file("vlp32c.pcap"), records);
+  VelodynePcapReader reader(file("vlp32c.pcap"), noImu());
+  EXPECT_EQ(reader.probe().model, velodyne::Model::kVlp32c);
+  const Read r = readAll(file("vlp32c.pcap"));
+  ASSERT_FALSE(r.scans.empty());
+  std::uint16_t max_ring = 0;
+  for (const ScanPoint& p : r.scans[1].points) {
+    ASSERT_NEAR(p.p.norm(), 10.0, 1e-3);
+    max_ring = std::max(max_ring, p.ring);
+  }
+  EXPECT_EQ(max_ring, 31);
 }
 
 TEST_F(PcapReader, ImuCsvIsMergedInTimeOrder) {

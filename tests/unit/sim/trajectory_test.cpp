@@ -19,8 +19,9 @@ Eigen::Vector3d rotationLog(const Eigen::Matrix3d& R) {
   return aa.angle() * aa.axis();
 }
 
-TEST(SimTrajectory, DerivativesMatchFiniteDifferences) {
-  const Trajectory& traj = defaultWorld().trajectory;
+/// Velocity, acceleration, angular rate, dR and ddR of a mounted frame
+/// against central differences of the pose, every 0.37 s of the walk.
+void expectDerivativesMatchFiniteDifferences(const Trajectory& traj) {
   const Pose T_body_lidar(
       Eigen::Quaterniond(Eigen::AngleAxisd(0.3, Eigen::Vector3d(1, 2, 3).normalized())),
       Eigen::Vector3d(0.25, -0.05, 0.12));
@@ -53,6 +54,10 @@ TEST(SimTrajectory, DerivativesMatchFiniteDifferences) {
     ++checked;
   }
   EXPECT_GT(checked, 300);
+}
+
+TEST(SimTrajectory, DerivativesMatchFiniteDifferences) {
+  expectDerivativesMatchFiniteDifferences(defaultWorld().trajectory);
 }
 
 TEST(SimTrajectory, StandsStillThenReturnsExactlyToStart) {
@@ -119,6 +124,120 @@ TEST(SimTrajectory, BodyKeepsClearOfTheBuilding) {
     }
   }
   EXPECT_GT(closest, 0.25) << "at t = " << closest_t;  // steps pass 0.28 m below the body centre
+}
+
+const World& handheldWorld() {
+  static const World world = [] {
+    BuildingSpec spec = loadBuildingSpec("default");
+    spec.robot = robotForMotion(RobotMotion::kHandheld);
+    return makeWorld(spec);
+  }();
+  return world;
+}
+
+/// Roll and pitch of R = Rz(yaw) Ry(pitch) Rx(roll).
+Eigen::Vector2d rollPitch(const Eigen::Matrix3d& R) {
+  return Eigen::Vector2d(std::atan2(R(2, 1), R(2, 2)), -std::asin(R(2, 0)));
+}
+
+TEST(SimTrajectory, HandheldDerivativesMatchFiniteDifferences) {
+  expectDerivativesMatchFiniteDifferences(handheldWorld().trajectory);
+}
+
+TEST(SimTrajectory, HandheldStandsStillThenReturnsExactlyToStart) {
+  const Trajectory& traj = handheldWorld().trajectory;
+  const Pose start = traj.T_world_body(0.0);
+  EXPECT_TRUE(start.isApprox(traj.T_world_body(traj.duration()), 1e-9, 1e-9));
+  for (double t : {0.0, 1.0, traj.stillTime(), traj.duration() - 1.0}) {
+    const FrameKinematics k = traj.body(t);
+    EXPECT_TRUE(k.T_world_frame.isApprox(start, 1e-9, 1e-9)) << t;
+    EXPECT_LT(k.v_world.norm() + k.a_world.norm() + k.omega_frame.norm(), 1e-9) << t;
+  }
+}
+
+/// A person's walk: about 1 m/s on floors and 0.5 m/s on the stairs, a
+/// 4 cm bounce at 1.9 steps per second, a few degrees of sway, turns of up
+/// to 90 deg/s, the device pitched with half the stair slope.
+TEST(SimTrajectory, HandheldWalkIsPlausibleForAPerson) {
+  const World& world = handheldWorld();
+  const Trajectory& traj = world.trajectory;
+  const RobotSpec robot = robotForMotion(RobotMotion::kHandheld);
+  const HandheldGaitSpec& gait = robot.handheld_gait;
+  double max_floor_speed = 0, max_stair_speed = 0, max_yaw_rate = 0, max_roll = 0;
+  double max_stair_pitch = 0, max_floor_yaw_rate = 0, max_slope = 0;
+  for (double t = 0.5; t < traj.duration() - 0.5; t += 0.01) {
+    const FrameKinematics k = traj.body(t);
+    const Eigen::Vector2d rp = rollPitch(k.T_world_frame.rotationMatrix());
+    max_roll = std::max(max_roll, std::abs(rp.x()));
+    max_yaw_rate = std::max(max_yaw_rate, std::abs(k.omega_frame.z()));
+    // In half a second the bounce moves the device 7 mm up or down at most,
+    // the stairs 0.13 m.
+    const Eigen::Vector3d p0 = traj.T_world_body(t - 0.5).translation();
+    const Eigen::Vector3d p1 = k.T_world_frame.translation();
+    const Eigen::Vector3d p2 = traj.T_world_body(t + 0.5).translation();
+    const double rise0 = p1.z() - p0.z(), rise1 = p2.z() - p1.z();
+    bool level = true;  // no flight within 2 s
+    for (double dt = -2.0; dt <= 2.0 && level; dt += 0.25)
+      level = std::abs(traj.T_world_body(t + dt).translation().z() - p1.z()) < 0.02;
+    if (std::abs(rise0) > 0.1 && std::abs(rise1) > 0.1) {  // on a flight for the whole second
+      max_stair_speed = std::max(max_stair_speed, (p2 - p0).norm());
+      max_stair_pitch = std::max(max_stair_pitch, std::abs(rp.y()));
+      max_slope =
+          std::max(max_slope, std::atan2(std::abs(p2.z() - p0.z()), (p2 - p0).head<2>().norm()));
+    } else if (level) {
+      max_floor_speed = std::max(max_floor_speed, k.v_world.head<2>().norm());
+      max_floor_yaw_rate = std::max(max_floor_yaw_rate, std::abs(k.omega_frame.z()));
+    }
+  }
+  EXPECT_GT(max_floor_speed, 0.95);
+  EXPECT_LT(max_floor_speed, 1.1);  // the sway adds a little
+  EXPECT_GT(max_stair_speed, 0.45);
+  EXPECT_LT(max_stair_speed, 0.55);
+  // Turns at up to 90 deg/s, plus the yaw sway's rate. The planner's heading
+  // samples (one per 1 cm chord of the corner's arc) ripple the rate by up to
+  // 10 % (the robot's too); where a corner joins a flight to a landing the
+  // heading turns up to 1 / cos(slope) faster than the 3D direction the
+  // planner limits.
+  const double sway_rate = gait.yaw * M_PI * gait.frequency;
+  EXPECT_GT(max_floor_yaw_rate, 80 * M_PI / 180);
+  EXPECT_LT(max_floor_yaw_rate, 1.1 * robot.max_yaw_rate + sway_rate + 0.02);
+  EXPECT_LT(max_yaw_rate, 1.1 * robot.max_yaw_rate / std::cos(34 * M_PI / 180) + sway_rate);
+  EXPECT_NEAR(max_roll, gait.roll, 0.2 * gait.roll);
+  // Half the flights' slope (about 34 deg), plus the step pitch.
+  EXPECT_GT(max_slope, 30 * M_PI / 180);
+  EXPECT_NEAR(max_stair_pitch, gait.slope_pitch * max_slope + gait.pitch, 1.2 * M_PI / 180);
+
+  // On the ground-floor corridor at full speed: 2 * bounce of height change,
+  // 1.9 bounces per second.
+  double t0 = traj.stillTime() + 4.0;
+  double z_min = 1e9, z_max = -1e9;
+  int peaks = 0;
+  double previous_vz = traj.body(t0).v_world.z();
+  for (double t = t0; t < t0 + 5.0; t += 0.002) {
+    const FrameKinematics k = traj.body(t);
+    ASSERT_GT(k.v_world.head<2>().norm(), 0.9) << "not at full speed at t = " << t;
+    z_min = std::min(z_min, k.T_world_frame.translation().z());
+    z_max = std::max(z_max, k.T_world_frame.translation().z());
+    if (previous_vz > 0 && k.v_world.z() <= 0) ++peaks;
+    previous_vz = k.v_world.z();
+  }
+  EXPECT_NEAR(z_max - z_min, 2 * gait.bounce, 0.003);
+  EXPECT_GE(z_max - z_min, 0.03);
+  EXPECT_LE(z_max - z_min, 0.05);
+  EXPECT_NEAR(peaks, 5.0 * gait.frequency, 1.0);
+}
+
+TEST(SimTrajectory, HandheldBodyKeepsClearOfTheBuilding) {
+  const World& world = handheldWorld();
+  double closest = 1e9, closest_t = 0;
+  for (double t = 0; t < world.trajectory.duration(); t += 0.25) {
+    const double d = world.building.mesh.distanceTo(world.trajectory.T_world_body(t).translation());
+    if (d < closest) {
+      closest = d;
+      closest_t = t;
+    }
+  }
+  EXPECT_GT(closest, 0.3) << "at t = " << closest_t;
 }
 
 }  // namespace
