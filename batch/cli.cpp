@@ -63,8 +63,8 @@ int main(int argc, char** argv) {
   SimulateOptions simulate;
   auto* sim_cmd = app.add_subcommand(
       "simulate",
-      "simulate a multi-storey building walk: ROS1 bag and/or Velodyne pcap (VLP-16 + IMU) with "
-      "ground truth");
+      "simulate a multi-storey building walk: LiDAR (VLP-16, VLP-32C, HDL-32E, OS1-64) + IMU in a "
+      "ROS1 bag and/or (VLP-16) a Velodyne pcap, with ground truth");
   sim_cmd->add_option("BUILDING", simulate.preset_or_spec,
                       "preset (tiny, default, building-a, building-b) or building spec YAML")
       ->capture_default_str();

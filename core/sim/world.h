@@ -1,7 +1,9 @@
 #pragma once
 /// The simulated world: the building and the robot's trajectory, both in the
-/// output world frame (z up, x = initial heading, origin at the LiDAR's start
-/// position).
+/// output world frame (z up, x = the LiDAR's initial heading (the IMU's when
+/// the LiDAR looks straight up or down), origin at the LiDAR's start
+/// position): the world frame of Storey's odometry. With the default mount
+/// x is the robot's initial heading.
 #include "sim/building.h"
 #include "sim/building_spec.h"
 #include "sim/trajectory.h"
