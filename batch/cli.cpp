@@ -64,7 +64,7 @@ int main(int argc, char** argv) {
   auto* sim_cmd = app.add_subcommand(
       "simulate",
       "simulate a multi-storey building walk: LiDAR (VLP-16, VLP-32C, HDL-32E, OS1-64) + IMU in a "
-      "ROS1 bag and/or (VLP-16) a Velodyne pcap, with ground truth");
+      "ROS1 bag and/or a Velodyne pcap, with ground truth");
   sim_cmd->add_option("BUILDING", simulate.preset_or_spec,
                       "preset (tiny, default, building-a, building-b) or building spec YAML")
       ->capture_default_str();
@@ -82,7 +82,7 @@ int main(int argc, char** argv) {
   sim_cmd->add_option("--threads", simulate.threads, "ray-casting threads (0: all cores)")
       ->capture_default_str();
   sim_cmd->add_flag("--pcap", simulate.pcap,
-                    "also write simulation.pcap (VLP-16 packets as VeloView records them) + imu.csv");
+                    "also write simulation.pcap (Velodyne packets as VeloView records them) + imu.csv");
   sim_cmd->add_flag_callback("--no-bag", [&simulate] { simulate.bag = false; },
                              "no ROS1 bag (with --pcap)");
 

@@ -3,7 +3,6 @@
 #include <cmath>
 
 #include "common/error.h"
-#include "io/velodyne/velodyne_tables.h"
 
 namespace storey::sim {
 namespace {
@@ -66,19 +65,25 @@ const char* simulatedLidarNames() {
   return "VLP-16, VLP-32C, HDL-32E, OS1-64";
 }
 
-LidarBeams lidarBeams(LidarModel model) {
+std::optional<velodyne::Model> velodyneModel(LidarModel model) {
   switch (model) {
     case LidarModel::kVlp16:
-      return velodyneBeams(model, velodyne::Model::kVlp16);
+      return velodyne::Model::kVlp16;
     case LidarModel::kVlp32c:
-      return velodyneBeams(model, velodyne::Model::kVlp32c);
+      return velodyne::Model::kVlp32c;
     case LidarModel::kHdl32e:
-      return velodyneBeams(model, velodyne::Model::kHdl32e);
+      return velodyne::Model::kHdl32e;
     case LidarModel::kOs1_64:
-      return ousterBeams();
     case LidarModel::kGeneric:
       break;
   }
+  return std::nullopt;
+}
+
+LidarBeams lidarBeams(LidarModel model) {
+  if (const std::optional<velodyne::Model> table = velodyneModel(model))
+    return velodyneBeams(model, *table);
+  if (model == LidarModel::kOs1_64) return ousterBeams();
   throw Error(std::string("simulator: no model of the LiDAR '") + toString(model) +
               "' (simulated: " + simulatedLidarNames() + ")");
 }

@@ -9,8 +9,10 @@
 /// column (Ouster) fires every channel once; the head turns clockwise seen
 /// from above.
 #include <cstdint>
+#include <optional>
 #include <vector>
 
+#include "io/velodyne/velodyne_tables.h"
 #include "types/sensor.h"
 
 namespace storey::sim {
@@ -41,6 +43,10 @@ struct LidarBeams {
 bool isSimulatedLidar(LidarModel model);
 /// The simulated models, as a list for messages ("VLP-16, VLP-32C, ...").
 const char* simulatedLidarNames();
+
+/// The capture decoder's model of a Velodyne LiDAR (its tables, its
+/// packets); empty for the others.
+std::optional<velodyne::Model> velodyneModel(LidarModel model);
 
 /// The beams of a simulated model; storey::Error for kGeneric.
 ///  VLP-16:  16 lasers -15..+15 deg, one every 2.304 us, sequences of 55.296 us, 2 mm.

@@ -60,10 +60,10 @@ std::int64_t LidarSimulator::scanEndNs(int n) const {
          *std::max_element(beams_.firing_ns.begin(), beams_.firing_ns.end());
 }
 
-Scan LidarSimulator::simulateScan(int n, std::vector<vlp16::FiringSequence>* firings,
+Scan LidarSimulator::simulateScan(int n, std::vector<VelodyneFiring>* firings,
                                   OrganisedScan* organised) const {
-  if (firings != nullptr && beams_.model != LidarModel::kVlp16)
-    throw Error("simulator: Velodyne packets are written for the VLP-16 only");
+  if (firings != nullptr && beams_.layout != CloudLayout::kVelodyne)
+    throw Error(std::string("simulator: no Velodyne packets for the ") + toString(beams_.model));
   Random rng(seed_, 0x11da2000ULL + static_cast<std::uint64_t>(n));
   const int channels = beams_.channels();
   Scan scan;
@@ -121,7 +121,7 @@ Scan LidarSimulator::simulateScan(int n, std::vector<vlp16::FiringSequence>* fir
     for (int c = 0; c < channels; c += kRayPacket) {
       caster_.cast16(&origins[c], &directions[c], static_cast<float>(spec_.max_range), &hits[c]);
     }
-    vlp16::FiringSequence* firing = nullptr;
+    VelodyneFiring* firing = nullptr;
     if (firings != nullptr) {
       firing = &firings->emplace_back();
       firing->t_ns = t_ns;
@@ -153,9 +153,10 @@ Scan LidarSimulator::simulateScan(int n, std::vector<vlp16::FiringSequence>* fir
       point.ring = beams_.ring[c];
       scan.points.push_back(point);
       if (firing != nullptr) {
-        // The packet's 2 mm steps (exact when the ranges are quantized); a
-        // range beyond what the 16-bit field holds (131 m) is a no-return there.
-        const long steps = std::lround(range / vlp16::kDistanceStep);
+        // The packet's distance steps (exact when the ranges are quantized); a
+        // range beyond what the 16-bit field holds (131 m; VLP-32C 262 m) is a
+        // no-return there.
+        const long steps = std::lround(range / step);
         firing->distance[c] = static_cast<std::uint16_t>(steps <= 65535 ? steps : 0);
         firing->reflectivity[c] = static_cast<std::uint8_t>(point.intensity);
       }

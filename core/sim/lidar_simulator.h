@@ -19,7 +19,7 @@
 #include "sim/organised_scan.h"
 #include "sim/raycaster.h"
 #include "sim/trajectory.h"
-#include "sim/vlp16.h"
+#include "sim/velodyne_firing.h"
 #include "types/scan.h"
 
 namespace storey::sim {
@@ -47,12 +47,12 @@ class LidarSimulator {
   /// Simulates scan n; Scan::stamp_ns is relative to the start of the
   /// simulation (add the start time). Thread-safe; deterministic per (seed, n).
   /// Scan::points are the returns in firing order, ring 0 = lowest beam.
-  /// `firings` (optional, VLP-16 only, else storey::Error) receives the scan's
-  /// firing sequences as the sensor reports them (no-returns as distance 0,
-  /// times relative to the start of the simulation): the same returns as the
-  /// scan's points, for a Velodyne capture of the log. `organised` (optional)
-  /// receives every beam of every column, no-returns included.
-  Scan simulateScan(int n, std::vector<vlp16::FiringSequence>* firings = nullptr,
+  /// `firings` (optional; Velodyne models only, else storey::Error) receives
+  /// the scan's firing sequences as the sensor reports them (no-returns as
+  /// distance 0, times relative to the start of the simulation): the same
+  /// returns as the scan's points, for a Velodyne capture of the log.
+  /// `organised` (optional) receives every beam of every column, no-returns included.
+  Scan simulateScan(int n, std::vector<VelodyneFiring>* firings = nullptr,
                     OrganisedScan* organised = nullptr) const;
 
  private:

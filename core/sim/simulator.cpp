@@ -147,9 +147,9 @@ SimulationResult simulate(const BuildingSpec& spec, const SimulationOptions& opt
   if (out_dir.empty()) throw Error("simulator: no output folder given");
   if (!options.formats.bag && !options.formats.pcap)
     throw Error("simulator: no log format chosen (a bag, a pcap or both)");
-  if (options.formats.pcap && spec.sensors.lidar.model != LidarModel::kVlp16) {
+  if (options.formats.pcap && !velodyneModel(spec.sensors.lidar.model)) {
     throw Error(spec.source +
-                ": the Velodyne capture (pcap) is written for a VLP-16 only; "
+                ": a Velodyne capture (pcap) needs a Velodyne LiDAR (VLP-16, VLP-32C, HDL-32E); "
                 "sensors.lidar.model is " +
                 toString(spec.sensors.lidar.model));
   }
@@ -210,7 +210,8 @@ SimulationResult simulate(const BuildingSpec& spec, const SimulationOptions& opt
   std::unique_ptr<VelodynePcapWriter> pcap;
   if (options.formats.pcap) {
     pcap = std::make_unique<VelodynePcapWriter>(staging.file(kPcapFile), start_ns,
-                                                sensors.lidar.rotation_rate);
+                                                sensors.lidar.rotation_rate,
+                                                *velodyneModel(sensors.lidar.model));
   }
   const double gyro_variance = std::pow(sensors.imu.gyro_noise_density, 2) * sensors.imu.rate;
   const double accel_variance = std::pow(sensors.imu.accel_noise_density, 2) * sensors.imu.rate;
@@ -240,8 +241,8 @@ SimulationResult simulate(const BuildingSpec& spec, const SimulationOptions& opt
   // Ray-cast the next chunk of scans while this thread writes the previous one.
   struct Chunk {
     std::vector<Scan> scans;
-    std::vector<std::vector<vlp16::FiringSequence>> firings;  ///< per scan, for the pcap
-    std::vector<OrganisedScan> organised;                     ///< per scan, Ouster layout
+    std::vector<std::vector<VelodyneFiring>> firings;  ///< per scan, for the pcap
+    std::vector<OrganisedScan> organised;              ///< per scan, Ouster layout
   };
   const bool want_firings = pcap != nullptr;
   const bool organised = lidar.beams().layout == CloudLayout::kOuster;
@@ -283,7 +284,7 @@ SimulationResult simulate(const BuildingSpec& spec, const SimulationOptions& opt
         bag->writeScan(sensors.points_topic, scan, start_ns + receipt_ns);
       }
       if (pcap) {
-        for (const vlp16::FiringSequence& firing : cast.firings[i]) pcap->add(firing);
+        for (const VelodyneFiring& firing : cast.firings[i]) pcap->add(firing);
       }
     }
   }

@@ -1,8 +1,8 @@
 #pragma once
 /// `storey simulate`: building spec -> building mesh, a legged robot's or a
 /// person's walk, LiDAR (VLP-16, VLP-32C, HDL-32E, OS1-64) and IMU logs in a
-/// ROS1 bag and/or (VLP-16) a Velodyne capture (pcap) with an IMU CSV, ground
-/// truth. See docs/simulator.md.
+/// ROS1 bag and/or (Velodyne models) a Velodyne capture (pcap) with an IMU
+/// CSV, ground truth. See docs/simulator.md.
 ///
 /// World frame of every output: z up (gravity (0, 0, -g)), x = the robot's
 /// initial heading, origin at the LiDAR's start position.
@@ -29,8 +29,8 @@ inline constexpr const char* kCalibrationFile = "calibration.yaml";
 /// Which logs to write (at least one).
 struct SimulationFormats {
   bool bag = true;    ///< simulation.bag: ROS1 bag with the point clouds and the IMU
-  bool pcap = false;  ///< simulation.pcap + imu.csv: the VLP-16's UDP packets as VeloView records
-                      ///< them, and the IMU
+  bool pcap = false;  ///< simulation.pcap + imu.csv: the Velodyne LiDAR's UDP packets as VeloView
+                      ///< records them, and the IMU
 };
 
 struct SimulationOptions {

@@ -8,7 +8,6 @@
 /// The timing is the decoder's (io/velodyne/velodyne_tables.h), so what the
 /// simulator fires is what a Velodyne capture of it decodes to; the
 /// elevations are checked against the decoder's table by the tests.
-#include <array>
 #include <cmath>
 #include <cstdint>
 
@@ -39,14 +38,5 @@ constexpr int ring(int id) {
 
 /// Distance unit of the sensor's packets and of the simulated ranges [m].
 constexpr double kDistanceStep = 0.002;
-
-/// One firing sequence as the sensor reports it (what a data packet's half
-/// block holds): the raw returns of the 16 lasers, no-returns included.
-struct FiringSequence {
-  std::int64_t t_ns = 0;                          ///< time of its first firing (laser 0) [ns]
-  double azimuth_deg = 0.0;                       ///< head azimuth at that time [deg], in [0, 360)
-  std::array<std::uint16_t, kLasers> distance{};  ///< by laser id [2 mm]; 0 = no return
-  std::array<std::uint8_t, kLasers> reflectivity{};  ///< by laser id [0, 255]
-};
 
 }  // namespace storey::sim::vlp16

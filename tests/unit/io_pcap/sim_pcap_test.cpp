@@ -30,6 +30,7 @@
 #include "io/velodyne/velodyne_tables.h"
 #include "pipeline/pipeline.h"
 #include "sim/imu_csv_writer.h"
+#include "sim/lidar_model.h"
 #include "sim/simulator.h"
 #include "sim/velodyne_pcap_writer.h"
 #include "sim/vlp16.h"
@@ -79,11 +80,11 @@ TEST(SimPcapWriter, PacketsAreTheSensorsBytes) {
       1'700'000'000'000'000'000LL + 123'456'789;  // 800.123456789 s past the hour
   const double hz = 10.0;
   const double step_deg = 360.0 * hz * 55.296e-6;
-  std::vector<sim::vlp16::FiringSequence> sequences;
+  std::vector<sim::VelodyneFiring> sequences;
   {
     sim::VelodynePcapWriter writer(path, start_ns, hz);
     for (int k = 0; k < 30; ++k) {
-      sim::vlp16::FiringSequence q;
+      sim::VelodyneFiring q;
       q.t_ns = k * 55296;
       q.azimuth_deg = std::fmod(359.5 + k * step_deg, 360.0);  // wraps inside the first packet
       for (int l = 0; l < 16; ++l) {
@@ -93,7 +94,7 @@ TEST(SimPcapWriter, PacketsAreTheSensorsBytes) {
       sequences.push_back(q);
       writer.add(q);
     }
-    sim::vlp16::FiringSequence late;
+    sim::VelodyneFiring late;
     late.t_ns = 31 * 55296;  // skips one
     EXPECT_THROW(writer.add(late), Error);
     writer.close();
@@ -392,8 +393,13 @@ CaptureComparison compareCaptureWithBag(const std::string& sim_dir) {
   c.pcap_dropped = pcap_reader.stats().dropped;
   c.rotation_hz = pcap_reader.rotationHz();
   c.data_packets = pcap_reader.dataPackets();
-  EXPECT_EQ(pcap_reader.probe().model, velodyne::Model::kVlp16);
-  EXPECT_TRUE(pcap_reader.probe().model_from_product_id);
+  // The calibration's model, told from the product id (HDL-32E's 0x21, also
+  // sent by early VLP-16 firmware, by the packets' period).
+  const velodyne::Model model = *sim::velodyneModel(config.sensor.lidar_model);
+  EXPECT_EQ(pcap_reader.probe().model, model);
+  if (model != velodyne::Model::kHdl32e) {
+    EXPECT_TRUE(pcap_reader.probe().model_from_product_id);
+  }
   return c;
 }
 
@@ -468,6 +474,29 @@ TEST(SimPcapFolder, DecodedCaptureIsTheBagsScans) {
   const CaptureComparison c = compareCaptureWithBag(dir);
   expectCaptureIsTheBag(c);
   expectTruthAtFrameStamps(c, std::string(dir) + "/" + sim::kPcapLidarTruthFile);
+}
+
+/// The VLP-32C's and the HDL-32E's captures (32-laser blocks, their product
+/// ids, timing and distance steps) decode to their bags' scans too.
+TEST(SimPcapModels, Vlp32cAndHdl32eCapturesAreTheirBags) {
+  for (const LidarModel model : {LidarModel::kVlp32c, LidarModel::kHdl32e}) {
+    SCOPED_TRACE(toString(model));
+    TempDir dir;
+    sim::BuildingSpec spec = sim::loadBuildingSpec("tiny");
+    spec.sensors.lidar.model = model;
+    sim::SimulationOptions options;
+    options.max_duration = 4.0;
+    options.formats.pcap = true;
+    const sim::SimulationResult result = sim::simulate(spec, options, dir.file("sim"));
+    const CaptureComparison c = compareCaptureWithBag(dir.file("sim"));
+    EXPECT_EQ(c.data_packets, result.pcap_packets);
+    // 12 firing sequences per packet: 663.552 us (VLP-32C) or 552.96 us (HDL-32E).
+    const double packet_s = model == LidarModel::kVlp32c ? 663.552e-6 : 552.96e-6;
+    EXPECT_NEAR(result.pcap_packets * packet_s, result.scans * 0.1, 2 * packet_s);
+    expectCaptureIsTheBag(c);
+    EXPECT_EQ(c.points, result.points);
+    expectTruthAtFrameStamps(c, dir.file("sim/" + std::string(sim::kPcapLidarTruthFile)));
+  }
 }
 
 TEST_F(SimPcap, CaptureClockGivesTheSensorTimes) {

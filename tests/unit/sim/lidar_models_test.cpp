@@ -11,6 +11,7 @@
 #include "io/velodyne/velodyne_tables.h"
 #include "sim/lidar_model.h"
 #include "sim/lidar_simulator.h"
+#include "sim/vlp16.h"
 #include "sim/world.h"
 
 namespace storey::sim {
@@ -53,7 +54,7 @@ TEST(SimLidar, Vlp16TableAndTimingAreTheManuals) {
   EXPECT_DOUBLE_EQ(beams.distance_step, 0.002);
   for (int id = 0; id < 16; ++id) {
     EXPECT_NEAR(beams.elevation[id], kVlp16Deg[id] * kDeg, 1e-12);
-    EXPECT_EQ(beams.elevation[id], vlp16::elevation(id));  // the --pcap code's table
+    EXPECT_EQ(beams.elevation[id], vlp16::elevation(id));  // sim/vlp16.h's table
     EXPECT_EQ(beams.ring[id], vlp16::ring(id));
     EXPECT_EQ(beams.firing_ns[id], id * 2304);
     EXPECT_EQ(beams.azimuth_offset[id], 0.0);
@@ -220,12 +221,12 @@ TEST(SimLidar, Os1_64ColumnsDivideTheRevolution) {
     EXPECT_EQ(organised.at(0, col).t_ns, (col * 100'000'000LL + 512) / 1024);
 }
 
-TEST(SimLidar, VelodynePacketsAreForTheVlp16Only) {
+TEST(SimLidar, VelodynePacketsAreForVelodyneModelsOnly) {
   BuildingSpec spec = loadBuildingSpec("tiny");
-  spec.sensors.lidar.model = LidarModel::kHdl32e;
+  spec.sensors.lidar.model = LidarModel::kOs1_64;
   const World world = makeWorld(spec);
   const LidarSimulator lidar(world.building.mesh, world.trajectory, spec.sensors, LidarNoise{}, 1);
-  std::vector<vlp16::FiringSequence> firings;
+  std::vector<VelodyneFiring> firings;
   EXPECT_THROW(lidar.simulateScan(0, &firings), Error);
 }
 

@@ -256,9 +256,9 @@ TEST(SimOutput, PipelineFollowsAHandheldPitchedYawedRig) {
   EXPECT_LT(unaligned, 0.10) << "same world frame as the truth without alignment";
 }
 
-TEST(SimOutput, CaptureIsForTheVlp16Only) {
+TEST(SimOutput, CaptureIsForVelodyneModelsOnly) {
   BuildingSpec spec = loadBuildingSpec("tiny");
-  spec.sensors.lidar.model = LidarModel::kHdl32e;
+  spec.sensors.lidar.model = LidarModel::kOs1_64;
   SimulationOptions options;
   options.max_duration = 0.5;
   options.formats.pcap = true;
@@ -267,7 +267,7 @@ TEST(SimOutput, CaptureIsForTheVlp16Only) {
     simulate(spec, options, out.string());
     FAIL() << "no error";
   } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("HDL-32E"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("OS1-64"), std::string::npos) << e.what();
   }
   EXPECT_FALSE(fs::exists(out));
 }
