@@ -34,6 +34,17 @@ sensor_msgs::PointField field(const std::string& name, std::uint32_t offset, std
   return f;
 }
 
+/// Writes one message; a failure is a storey::Error naming the bag and what.
+template <typename Message>
+void writeMessage(rosbag::Bag& bag, const std::string& path, const std::string& topic,
+                  std::int64_t record_ns, const Message& msg, const char* what) {
+  try {
+    bag.write(topic, rosTime(record_ns), msg);
+  } catch (const std::exception& e) {
+    throw Error(path + ": cannot write " + what + ": " + e.what());
+  }
+}
+
 }  // namespace
 
 BagWriter::BagWriter(const std::string& path, BagCompression compression)
@@ -84,11 +95,7 @@ void BagWriter::writeScan(const std::string& topic, const Scan& scan, std::int64
     std::memcpy(out + 24, &p.time, 4);
     out += kStep;
   }
-  try {
-    impl_->bag.write(topic, rosTime(receipt_ns), msg);
-  } catch (const std::exception& e) {
-    throw Error(path_ + ": cannot write a point cloud: " + e.what());
-  }
+  writeMessage(impl_->bag, path_, topic, receipt_ns, msg, "a point cloud");
 }
 
 void BagWriter::writeOrganisedScan(const std::string& topic, const std::string& frame_id,
@@ -123,11 +130,7 @@ void BagWriter::writeOrganisedScan(const std::string& topic, const std::string& 
       out += kOusterPointStep;
     }
   }
-  try {
-    impl_->bag.write(topic, rosTime(receipt_ns), msg);
-  } catch (const std::exception& e) {
-    throw Error(path_ + ": cannot write a point cloud: " + e.what());
-  }
+  writeMessage(impl_->bag, path_, topic, receipt_ns, msg, "a point cloud");
 }
 
 void BagWriter::writeImu(const std::string& topic, const std::string& frame_id,
@@ -157,11 +160,7 @@ void BagWriter::writeImu(const std::string& topic, const std::string& frame_id,
     msg.angular_velocity_covariance[4 * i] = gyro_variance;
     msg.linear_acceleration_covariance[4 * i] = accel_variance;
   }
-  try {
-    impl_->bag.write(topic, rosTime(sample.stamp_ns), msg);
-  } catch (const std::exception& e) {
-    throw Error(path_ + ": cannot write an IMU message: " + e.what());
-  }
+  writeMessage(impl_->bag, path_, topic, sample.stamp_ns, msg, "an IMU message");
 }
 
 void BagWriter::close() {

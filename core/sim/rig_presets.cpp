@@ -2,6 +2,8 @@
 // IMU grades from datasheets, robot motions from published gait figures.
 // docs/simulator.md ("IMU grades", "Handheld walking") lists the same figures.
 #include <cmath>
+#include <initializer_list>
+#include <string>
 
 #include "common/error.h"
 #include "sim/building_spec.h"
@@ -16,6 +18,14 @@ constexpr double kMicroG = 1e-6 * kStandardGravity;
 /// (datasheets give a bias stability, not a random-walk density).
 constexpr double kDriftWindowS = 100.0;
 
+/// The value of `values` whose toString() is `name`; storey::Error naming the choices.
+template <typename E>
+E fromName(const std::string& name, std::initializer_list<E> values, const char* choices) {
+  for (E value : values)
+    if (name == toString(value)) return value;
+  throw Error(std::string("must be ") + choices + "; got '" + name + "'");
+}
+
 }  // namespace
 
 const char* toString(ImuGrade grade) {
@@ -29,9 +39,7 @@ const char* toString(ImuGrade grade) {
 }
 
 ImuGrade imuGradeFromString(const std::string& name) {
-  for (ImuGrade g : {ImuGrade::kTactical, ImuGrade::kConsumer})
-    if (name == toString(g)) return g;
-  throw Error("must be tactical, consumer or custom; got '" + name + "'");
+  return fromName(name, {ImuGrade::kTactical, ImuGrade::kConsumer}, "tactical, consumer or custom");
 }
 
 ImuRateRange imuGradeRates(ImuGrade grade) {
@@ -102,9 +110,7 @@ const char* toString(RobotMotion motion) {
 }
 
 RobotMotion robotMotionFromString(const std::string& name) {
-  for (RobotMotion m : {RobotMotion::kLegged, RobotMotion::kHandheld})
-    if (name == toString(m)) return m;
-  throw Error("must be legged or handheld; got '" + name + "'");
+  return fromName(name, {RobotMotion::kLegged, RobotMotion::kHandheld}, "legged or handheld");
 }
 
 RobotSpec robotForMotion(RobotMotion motion) {

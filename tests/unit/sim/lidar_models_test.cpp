@@ -13,6 +13,7 @@
 #include "sim/lidar_simulator.h"
 #include "sim/vlp16.h"
 #include "sim/world.h"
+#include "unit/sim/scan_on_mesh.h"
 
 namespace storey::sim {
 namespace {
@@ -176,15 +177,7 @@ TEST(SimLidar, EveryModelScansTheMeshFromAPitchedYawedMount) {
       const auto c = std::find(beams.ring.begin(), beams.ring.end(), p.ring) - beams.ring.begin();
       ASSERT_NEAR(within, beams.firing_ns[c] * 1e-9, 2e-8) << "ring " << p.ring;
     }
-    double worst = 0.0;
-    for (std::size_t i = 0; i < scan.points.size(); i += 37) {
-      const ScanPoint& p = scan.points[i];
-      const Pose T_world_lidar =
-          world.trajectory.frame(scan.stamp_ns * 1e-9 + p.time, spec.sensors.T_body_lidar)
-              .T_world_frame;
-      worst = std::max(worst, world.building.mesh.distanceTo(T_world_lidar * p.p.cast<double>()));
-    }
-    EXPECT_LT(worst, 1e-3);
+    EXPECT_LT(worstDistanceToMesh(world, scan, spec.sensors.T_body_lidar, 37), 1e-3);
     // The organised cells hold the same returns, a column's time in every cell.
     std::size_t returns = 0;
     for (int row = 0; row < organised.rows; ++row) {

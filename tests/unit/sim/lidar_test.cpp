@@ -9,6 +9,7 @@
 
 #include "sim/vlp16.h"
 #include "sim/world.h"
+#include "unit/sim/scan_on_mesh.h"
 
 namespace storey::sim {
 namespace {
@@ -99,14 +100,7 @@ TEST(SimLidar, NoiseFreeScanMatchesTheSensorAndTheMesh) {
 
   // On the mesh, placed with the true pose at each point's own time.
   const Pose& T_body_lidar = f.spec.sensors.T_body_lidar;
-  double worst = 0.0;
-  for (std::size_t i = 0; i < scan.points.size(); i += 29) {
-    const ScanPoint& p = scan.points[i];
-    const double t = scan.stamp_ns * 1e-9 + p.time;
-    const Pose T_world_lidar = f.world.trajectory.frame(t, T_body_lidar).T_world_frame;
-    worst = std::max(worst, f.world.building.mesh.distanceTo(T_world_lidar * p.p.cast<double>()));
-  }
-  EXPECT_LT(worst, 1e-3);
+  EXPECT_LT(worstDistanceToMesh(f.world, scan, T_body_lidar, 29), 1e-3);
   // ...but not with the scan's stamp pose: the scan really is motion-distorted.
   double distorted = 0.0;
   const Pose T_stamp = f.world.trajectory.frame(scan.stamp_ns * 1e-9, T_body_lidar).T_world_frame;
@@ -132,15 +126,7 @@ TEST(SimLidar, NoiseFreeScanOnTheStairsLiesOnTheMesh) {
   ASSERT_LT(n, lidar.scanCount(world.trajectory.duration())) << "no scan on the stairs";
   const Scan scan = lidar.simulateScan(n);
   ASSERT_GT(scan.points.size(), 15000u);
-  double worst = 0.0;
-  for (std::size_t i = 0; i < scan.points.size(); i += 41) {
-    const ScanPoint& p = scan.points[i];
-    const Pose T_world_lidar =
-        world.trajectory.frame(scan.stamp_ns * 1e-9 + p.time, spec.sensors.T_body_lidar)
-            .T_world_frame;
-    worst = std::max(worst, world.building.mesh.distanceTo(T_world_lidar * p.p.cast<double>()));
-  }
-  EXPECT_LT(worst, 1e-3);
+  EXPECT_LT(worstDistanceToMesh(world, scan, spec.sensors.T_body_lidar, 41), 1e-3);
 }
 
 TEST(SimLidar, RangeNoiseAndDropoutsFollowTheSpec) {

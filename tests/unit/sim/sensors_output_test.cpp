@@ -6,7 +6,6 @@
 #include <rosbag/view.h>
 #include <sensor_msgs/Imu.h>
 #include <sensor_msgs/PointCloud2.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <cstdio>
@@ -24,28 +23,13 @@
 #include "sim/lidar_simulator.h"
 #include "sim/simulator.h"
 #include "sim/world.h"
+#include "support/temp_dir.h"
 #include "trajectory/tum.h"
 
 namespace storey::sim {
 namespace {
 
 namespace fs = std::filesystem;
-
-struct ScratchRoot {
-  fs::path path =
-      fs::temp_directory_path() / ("storey_sim_sensors_test_" + std::to_string(::getpid()));
-  ~ScratchRoot() {
-    std::error_code ec;
-    fs::remove_all(path, ec);
-  }
-};
-
-fs::path scratch(const std::string& name) {
-  static const ScratchRoot root;
-  const fs::path dir = root.path / name;
-  fs::remove_all(dir);
-  return dir;
-}
 
 template <typename T>
 T read(const std::uint8_t* p) {
@@ -68,7 +52,8 @@ TEST(SimOutput, OusterCloudHasTheDriverLayoutAndReadsBack) {
   SimulationOptions options;
   options.max_duration = 1.0;
   options.perfect_sensors = true;
-  const fs::path out = scratch("ouster");
+  const test::TempDir dir;
+  const fs::path out = dir.path() / "ouster";
   const SimulationResult result = simulate(spec, options, out.string());
   ASSERT_EQ(result.scans, 10);  // the 10th's last column fires at 0.99990 s
 
@@ -179,7 +164,8 @@ TEST(SimOutput, ImuOrientationAndLidarModelAreWritten) {
            Eigen::Vector3d(0.1, -0.2, 0.15));
   SimulationOptions options;
   options.max_duration = 3.0;
-  const fs::path out = scratch("orientation");
+  const test::TempDir dir;
+  const fs::path out = dir.path() / "orientation";
   const SimulationResult result = simulate(spec, options, out.string());
   const ImuSimulation truth =
       simulateImu(makeWorld(spec).trajectory, spec.sensors, result.duration, false, spec.seed);
@@ -239,7 +225,8 @@ TEST(SimOutput, PipelineFollowsAHandheldPitchedYawedRig) {
   EXPECT_NEAR(std::atan2(lidar_x.y(), lidar_x.x()), 0.0, 1e-12);  // heading +x
   EXPECT_NEAR(lidar_x.z(), -std::sin(20 * deg), 1e-12);           // pitched down
 
-  const fs::path out = scratch("rig");
+  const test::TempDir dir;
+  const fs::path out = dir.path() / "rig";
   const SimulationResult result = simulate(spec, SimulationOptions{}, out.string());
   Config config;
   applyCalibrationFile(config, (out / kCalibrationFile).string());
@@ -262,7 +249,8 @@ TEST(SimOutput, CaptureIsForVelodyneModelsOnly) {
   SimulationOptions options;
   options.max_duration = 0.5;
   options.formats.pcap = true;
-  const fs::path out = scratch("pcap_hdl");
+  const test::TempDir dir;
+  const fs::path out = dir.path() / "pcap_os1";
   try {
     simulate(spec, options, out.string());
     FAIL() << "no error";

@@ -111,10 +111,8 @@ TEST(SimTrajectory, WalkIsPlausibleForALeggedRobot) {
   EXPECT_LT(max_accel, 8.0);
 }
 
-/// The robot never walks through the building: its body centre keeps clear of
-/// every surface (the floor is body_height below it).
-TEST(SimTrajectory, BodyKeepsClearOfTheBuilding) {
-  const World& world = defaultWorld();
+/// The body centre's closest approach to any surface over the walk [m] and when [s].
+std::pair<double, double> closestApproach(const World& world) {
   double closest = 1e9, closest_t = 0;
   for (double t = 0; t < world.trajectory.duration(); t += 0.25) {
     const double d = world.building.mesh.distanceTo(world.trajectory.T_world_body(t).translation());
@@ -123,6 +121,13 @@ TEST(SimTrajectory, BodyKeepsClearOfTheBuilding) {
       closest_t = t;
     }
   }
+  return {closest, closest_t};
+}
+
+/// The robot never walks through the building: its body centre keeps clear of
+/// every surface (the floor is body_height below it).
+TEST(SimTrajectory, BodyKeepsClearOfTheBuilding) {
+  const auto [closest, closest_t] = closestApproach(defaultWorld());
   EXPECT_GT(closest, 0.25) << "at t = " << closest_t;  // steps pass 0.28 m below the body centre
 }
 
@@ -228,15 +233,7 @@ TEST(SimTrajectory, HandheldWalkIsPlausibleForAPerson) {
 }
 
 TEST(SimTrajectory, HandheldBodyKeepsClearOfTheBuilding) {
-  const World& world = handheldWorld();
-  double closest = 1e9, closest_t = 0;
-  for (double t = 0; t < world.trajectory.duration(); t += 0.25) {
-    const double d = world.building.mesh.distanceTo(world.trajectory.T_world_body(t).translation());
-    if (d < closest) {
-      closest = d;
-      closest_t = t;
-    }
-  }
+  const auto [closest, closest_t] = closestApproach(handheldWorld());
   EXPECT_GT(closest, 0.3) << "at t = " << closest_t;
 }
 
