@@ -1,5 +1,6 @@
 #include "sim/building.h"
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 
@@ -496,6 +497,12 @@ void Building::translate(const Eigen::Vector3d& offset) {
     s.ceiling_z += offset.z();
   }
   for (RouteVertex& v : route) v.p += offset;
+}
+
+void Building::rotateZ(double yaw) {
+  mesh.rotateZ(yaw);
+  const Eigen::Matrix3d R = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  for (RouteVertex& v : route) v.p = R * v.p;
 }
 
 Building generateBuilding(const BuildingSpec& spec) {

@@ -1,12 +1,16 @@
 #include "sim/building_spec.h"
 
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <sstream>
 
 #include "common/error.h"
 #include "common/yaml_section.h"
 #include "sim/embedded_presets.h"
+#include "sim/random_spec.h"
 
 namespace storey::sim {
 namespace {
@@ -175,27 +179,43 @@ struct SpecReader {
   }
 };
 
+/// The shortest decimal text that reads back as exactly `v` (0.341, not 0.34100000000000003).
+std::string shortest(double v) {
+  char text[40];
+  for (int digits = 1; digits <= 17; ++digits) {
+    std::snprintf(text, sizeof(text), "%.*g", digits, v);
+    if (std::strtod(text, nullptr) != v) continue;
+    // Whole and large numbers without an exponent (10, not 1e+01).
+    if (std::abs(v) >= 1.0 && std::abs(v) < 1e16 && std::strchr(text, 'e') != nullptr) {
+      const int integer_digits = static_cast<int>(std::floor(std::log10(std::abs(v)))) + 1;
+      std::snprintf(text, sizeof(text), "%.*f", std::max(0, digits - integer_digits), v);
+    }
+    break;
+  }
+  return text;
+}
+
 struct SpecWriter {
   YAML::Emitter& out;
   template <typename T>
   void field(const char* key, const T& value) {
     out << YAML::Key << key << YAML::Value << value;
   }
-  void field(const char* key, const Eigen::Vector3d& v) {
-    out << YAML::Key << key << YAML::Value << YAML::Flow << YAML::BeginSeq << v.x() << v.y()
-        << v.z() << YAML::EndSeq;
+  void field(const char* key, double value) {
+    out << YAML::Key << key << YAML::Value << shortest(value);
   }
+  void field(const char* key, const Eigen::Vector3d& v) { list(key, {v.x(), v.y(), v.z()}); }
   void degrees(const char* key, double radians) { field(key, radians / kDegToRad); }
   void mount(const char* key, const Pose& pose) {
     const Eigen::Quaterniond& q = pose.rotation();
     out << YAML::Key << key << YAML::Value << YAML::BeginMap;
     field("translation", pose.translation());
-    out << YAML::Key << "rotation_xyzw" << YAML::Value << YAML::Flow << YAML::BeginSeq << q.x()
-        << q.y() << q.z() << q.w() << YAML::EndSeq << YAML::EndMap;
+    list("rotation_xyzw", {q.x(), q.y(), q.z(), q.w()});
+    out << YAML::EndMap;
   }
   void list(const char* key, const std::vector<double>& values) {
     out << YAML::Key << key << YAML::Value << YAML::Flow << YAML::BeginSeq;
-    for (double v : values) out << v;
+    for (double v : values) out << shortest(v);
     out << YAML::EndSeq;
   }
   template <typename F>
@@ -314,7 +334,6 @@ void BuildingSpec::validate() const {
 std::string buildingSpecYaml(const BuildingSpec& spec) {
   BuildingSpec copy = spec;
   YAML::Emitter out;
-  out.SetDoublePrecision(17);
   out << YAML::Comment("Storey building spec, format version 1 (see docs/simulator.md)");
   out << YAML::BeginMap;
   out << YAML::Key << "format_version" << YAML::Value << 1;
@@ -366,6 +385,10 @@ BuildingSpec parseBuildingSpec(const std::string& yaml_text, const std::string& 
 }
 
 BuildingSpec loadBuildingSpec(const std::string& preset_or_path) {
+  if (const std::optional<std::uint64_t> seed = randomSeedOf(preset_or_path)) {
+    // Through the YAML text, so spec.yaml (that text) gives exactly this spec.
+    return parseBuildingSpec(buildingSpecYaml(drawRandomSpec(*seed)), preset_or_path);
+  }
   for (const std::string& name : presetNames()) {
     if (name == preset_or_path) return parseBuildingSpec(presetText(name), "preset '" + name + "'");
   }

@@ -1,5 +1,7 @@
 #include "sim/mesh.h"
 
+#include <Eigen/Geometry>
+
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -108,6 +110,11 @@ void TriangleMesh::addCylinder(const Eigen::Vector2d& centre, double radius, dou
 
 void TriangleMesh::translate(const Eigen::Vector3d& offset) {
   for (Eigen::Vector3d& v : vertices_) v += offset;
+}
+
+void TriangleMesh::rotateZ(double yaw) {
+  const Eigen::Matrix3d R = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  for (Eigen::Vector3d& v : vertices_) v = R * v;
 }
 
 double pointTriangleDistance(const Eigen::Vector3d& p, const Eigen::Vector3d& a,

@@ -50,6 +50,8 @@ class TriangleMesh {
   void addQuad(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
                const Eigen::Vector3d& d, Surface surface, float reflectivity);
   void translate(const Eigen::Vector3d& offset);
+  /// Turns every vertex about the world z axis through the origin by `yaw` [rad].
+  void rotateZ(double yaw);
 
   /// Unsigned distance from x to the nearest triangle of a returning surface
   /// (brute force; for tests and checks, not per point in production).

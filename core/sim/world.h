@@ -1,7 +1,7 @@
 #pragma once
 /// The simulated world: the building and the robot's trajectory, both in the
-/// output world frame (z up, x = initial heading, origin at the LiDAR's start
-/// position).
+/// output world frame (z up, x = the LiDAR's initial heading projected on the
+/// level plane, origin at the LiDAR's start position; Storey's world frame).
 #include "sim/building.h"
 #include "sim/building_spec.h"
 #include "sim/trajectory.h"
