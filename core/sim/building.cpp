@@ -127,12 +127,40 @@ class Generator {
         r.glass_front = rng_.uniform() < b_.glass_front_fraction;
       }
     }
+    layoutAtrium();
   }
+
+  /// The south rooms the atrium replaces: `rooms` consecutive ones centred
+  /// as near as they can be to atrium.position.
+  void layoutAtrium() {
+    const AtriumSpec& a = b_.atrium;
+    if (a.rooms == 0) return;
+    const int n = static_cast<int>(south_rooms_.size());
+    if (a.rooms > n - 1)
+      throw Error(spec_.source + ": key 'building.atrium.rooms' (" + std::to_string(a.rooms) +
+                  ") must leave at least one of the " + std::to_string(n) + " south rooms");
+    const double centre = a.position * L_;
+    int first = 0;
+    double best = 1e300;
+    for (int i = 0; i + a.rooms <= n; ++i) {
+      const double mid = (south_rooms_[i].x0 + south_rooms_[i + a.rooms - 1].x1) / 2;
+      if (std::abs(mid - centre) < best) {
+        best = std::abs(mid - centre);
+        first = i;
+      }
+    }
+    for (int i = first; i < first + a.rooms; ++i) south_rooms_[i].atrium = true;
+    atrium_x0_ = south_rooms_[first].x0;
+    atrium_x1_ = south_rooms_[first + a.rooms - 1].x1;
+  }
+
+  bool hasAtrium() const { return b_.atrium.rooms > 0; }
 
   struct Room {
     double x0, x1;        ///< partition wall centrelines
     double door0, door1;  ///< door opening along x
     bool glass_front;
+    bool atrium = false;  ///< part of the atrium (south side only)
   };
 
   void splitRooms(double x0, double x1, std::vector<Room>& rooms) {
@@ -175,11 +203,19 @@ class Generator {
   void addSlab(int k) {
     const double top = z_[k], t = b_.slab_thickness;
     const Rect outer{-wt_ / 2, y_south_ - wt_ / 2, L_ + wt_ / 2, y_north_ + wt_ / 2};
-    std::vector<Rect> parts{outer};
+    std::vector<Rect> holes;
     if (hasStairs() && k > 0 && k < storeyCount()) {
       const double half = b_.stairwell.width / 2;
-      parts = rectMinus(
-          outer, {xs_ - half + wt_ / 2, y_flights_, xs_ + half - wt_ / 2, y_back_ - wt_ / 2});
+      holes.push_back({xs_ - half + wt_ / 2, y_flights_, xs_ + half - wt_ / 2, y_back_ - wt_ / 2});
+    }
+    if (hasAtrium() && k > 0 && k < storeyCount())
+      holes.push_back({atrium_x0_ + wt_ / 2, y_south_ + wt_ / 2, atrium_x1_ - wt_ / 2, -yc_ - wt_ / 2});
+    std::vector<Rect> parts{outer};
+    for (const Rect& hole : holes) {
+      std::vector<Rect> cut;
+      for (const Rect& part : parts)
+        for (const Rect& piece : rectMinus(part, hole)) cut.push_back(piece);
+      parts = std::move(cut);
     }
     for (const Rect& r : parts) {
       // Upper half reads as floor, lower half as ceiling.
@@ -217,6 +253,7 @@ class Generator {
     auto corridorOpenings = [&](const std::vector<Room>& rooms) {
       std::vector<Opening> o;
       for (const Room& r : rooms) {
+        if (r.atrium) continue;  // one opening over the whole atrium, below
         o.push_back({r.door0, r.door1, zf, zf + b_.door_height, false});
         if (r.glass_front) {
           const double g0 = r.x0 + wt_ / 2 + 0.2, g1 = r.x1 - wt_ / 2 - 0.2;
@@ -230,12 +267,27 @@ class Generator {
     std::vector<Opening> north = corridorOpenings(north_rooms_);
     if (hasStairs())
       north.push_back({xs_ - half + wt_ / 2, xs_ + half - wt_ / 2, zf, zf + 2.3, false});
-    addWall(true, -yc_, 0.0, L_, z0, z1, corridorOpenings(south_rooms_));
+    std::vector<Opening> south = corridorOpenings(south_rooms_);
+    if (hasAtrium()) {
+      // Open to the hall on the ground floor; above it a balustrade: a solid
+      // parapet (the wall below the opening) or a glass pane in the opening.
+      const AtriumSpec& a = b_.atrium;
+      const double ax0 = atrium_x0_ + wt_ / 2, ax1 = atrium_x1_ - wt_ / 2;
+      const bool parapet = k > 0 && !a.glass_balustrade;
+      south.push_back({ax0, ax1, parapet ? zf + a.balustrade_height : zf, z1, false});
+      if (k > 0 && a.glass_balustrade)
+        out_.mesh.addBox(Vector3d(ax0, -yc_ - kGlassThickness / 2, zf),
+                         Vector3d(ax1, -yc_ + kGlassThickness / 2, zf + a.balustrade_height),
+                         Surface::kGlass);
+    }
+    addWall(true, -yc_, 0.0, L_, z0, z1, south);
     addWall(true, yc_, 0.0, L_, z0, z1, north);
 
     // Partitions between rooms.
-    for (std::size_t i = 1; i < south_rooms_.size(); ++i)
+    for (std::size_t i = 1; i < south_rooms_.size(); ++i) {
+      if (south_rooms_[i - 1].atrium && south_rooms_[i].atrium) continue;  // inside the atrium
       addWall(false, south_rooms_[i].x0, y_south_, -yc_, z0, z1, {});
+    }
     for (std::size_t i = 1; i < north_rooms_.size(); ++i) {
       if (hasStairs() && std::abs(north_rooms_[i].x0 - (xs_ + half)) < 1e-9) continue;
       addWall(false, north_rooms_[i].x0, yc_, y_north_, z0, z1, {});
@@ -267,6 +319,7 @@ class Generator {
     if (north && hasStairs() && x1 > xs_ - b_.stairwell.width / 2 - 0.2 &&
         x0 < xs_ + b_.stairwell.width / 2 + 0.2)
       return false;
+    if (!north && hasAtrium() && x1 > atrium_x0_ - 0.2 && x0 < atrium_x1_ + 0.2) return false;
     return true;
   }
 
@@ -333,6 +386,7 @@ class Generator {
       const double side = north ? 1.0 : -1.0;
       const double y_near = yc_ + wt_ / 2, y_far = (north ? y_north_ : -y_south_) - wt_ / 2;
       for (const Room& r : north ? north_rooms_ : south_rooms_) {
+        if (r.atrium && k > 0) continue;  // the void; the hall below keeps its furniture
         const double rx0 = r.x0 + wt_ / 2, rx1 = r.x1 - wt_ / 2;
         // Desk against the outer wall.
         const double dw = std::min(rng_.uniform(1.2, 1.8), rx1 - rx0 - 0.4);
@@ -486,6 +540,7 @@ class Generator {
   double L_ = 0, yc_ = 0, wt_ = 0;
   double xs_ = 0, y_flights_ = 0, y_back_ = 0, y_north_ = 0, y_south_ = 0;
   double x_east_lane_ = 0, x_west_lane_ = 0, x_turn_west_ = 0, x_turn_east_ = 0, x_start_ = 0;
+  double atrium_x0_ = 0, atrium_x1_ = 0;  ///< partition centrelines at the atrium's ends
 };
 
 }  // namespace

@@ -93,6 +93,12 @@ void visitLayout(V& v, BuildingLayoutSpec& b) {
   v.field("clutter_density", b.clutter_density);
   v.field("pillar_spacing", b.pillar_spacing);
   v.section("stairwell", [&](auto& w) { visitStairwell(w, b.stairwell); });
+  v.section("atrium", [&](auto& a) {
+    a.field("rooms", b.atrium.rooms);
+    a.field("position", b.atrium.position);
+    a.field("glass_balustrade", b.atrium.glass_balustrade);
+    a.field("balustrade_height", b.atrium.balustrade_height);
+  });
 }
 
 template <typename V>
@@ -278,6 +284,12 @@ void BuildingSpec::validate() const {
         "building.stairwell.half_landing_depth", "must be in [1, 4] m");
   check(s.position > 0.0 && s.position < 1.0, *this, "building.stairwell.position",
         "must be in (0, 1)");
+  check(b.atrium.rooms >= 0 && b.atrium.rooms <= 20, *this, "building.atrium.rooms",
+        "must be in [0, 20]");
+  check(b.atrium.position > 0.0 && b.atrium.position < 1.0, *this, "building.atrium.position",
+        "must be in (0, 1)");
+  check(b.atrium.balustrade_height >= 0.8 && b.atrium.balustrade_height <= 1.5, *this,
+        "building.atrium.balustrade_height", "must be in [0.8, 1.5] m");
   check(robot.walk_speed > 0.05 && robot.walk_speed <= 2.0, *this, "robot.walk_speed",
         "must be in (0.05, 2] m/s");
   check(robot.stair_speed > 0.05 && robot.stair_speed <= 1.0, *this, "robot.stair_speed",

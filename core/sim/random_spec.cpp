@@ -110,6 +110,15 @@ BuildingSpec draw(std::uint64_t seed, std::uint64_t attempt) {
     sensors.imu.gyro_bias[i] = mm(rng.uniform(-3.0, 3.0)) * 1e-3;
     sensors.imu.accel_bias[i] = mm(rng.uniform(-0.05, 0.05));
   }
+
+  // An atrium in a third of the buildings (the generator refuses one that
+  // leaves no south room; that draw is redrawn).
+  if (rng.uniform() < 0.35) {
+    b.atrium.rooms = uniformInt(rng, 1, 3);
+    b.atrium.position = mm(rng.uniform(0.2, 0.8));
+    b.atrium.glass_balustrade = rng.uniform() < 0.5;
+    b.atrium.balustrade_height = mm(rng.uniform(1.0, 1.2));
+  }
   return spec;
 }
 
