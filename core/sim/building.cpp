@@ -209,7 +209,8 @@ class Generator {
       holes.push_back({xs_ - half + wt_ / 2, y_flights_, xs_ + half - wt_ / 2, y_back_ - wt_ / 2});
     }
     if (hasAtrium() && k > 0 && k < storeyCount())
-      holes.push_back({atrium_x0_ + wt_ / 2, y_south_ + wt_ / 2, atrium_x1_ - wt_ / 2, -yc_ - wt_ / 2});
+      holes.push_back(
+          {atrium_x0_ + wt_ / 2, y_south_ + wt_ / 2, atrium_x1_ - wt_ / 2, -yc_ - wt_ / 2});
     std::vector<Rect> parts{outer};
     for (const Rect& hole : holes) {
       std::vector<Rect> cut;

@@ -27,10 +27,10 @@ struct StairwellSpec {
 /// floors of other storeys are seen across it. The ground floor under it is
 /// an open hall.
 struct AtriumSpec {
-  int rooms = 0;                    ///< south rooms it replaces; 0 = no atrium
-  double position = 0.5;            ///< its centre along the corridor, as a fraction [0, 1]
-  bool glass_balustrade = true;     ///< glass (LiDAR sees through) or a solid parapet
-  double balustrade_height = 1.1;   ///< [m]
+  int rooms = 0;                   ///< south rooms it replaces; 0 = no atrium
+  double position = 0.5;           ///< its centre along the corridor, as a fraction [0, 1]
+  bool glass_balustrade = true;    ///< glass (LiDAR sees through) or a solid parapet
+  double balustrade_height = 1.1;  ///< [m]
 };
 
 struct BuildingLayoutSpec {

@@ -80,7 +80,9 @@ BuildingSpec draw(std::uint64_t seed, std::uint64_t attempt) {
   r.max_yaw_rate = mm(rng.uniform(40.0, 90.0)) * kDeg;
   r.turn_radius = mm(rng.uniform(0.3, 0.8));
   r.body_height = mm(rng.uniform(0.4, 0.7));
-  r.lane_offset = mm(rng.uniform(0.0, std::max(0.0, b.corridor_width / 2 - 0.45)));
+  // Lanes keep clear of the clutter along the corridor walls (up to 0.3 m deep).
+  r.lane_offset =
+      mm(rng.uniform(0.0, std::max(0.0, b.corridor_width / 2 - b.wall_thickness / 2 - 0.6)));
   r.start_offset = mm(rng.uniform(2.0, 4.0));
   r.still_time = 2.0;
   r.gait.frequency = mm(rng.uniform(2.0, 3.0));

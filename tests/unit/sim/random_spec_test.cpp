@@ -15,7 +15,9 @@
 
 #include "common/error.h"
 #include "sim/building.h"
+#include "sim/raycaster.h"
 #include "sim/simulator.h"
+#include "sim/world.h"
 #include "support/temp_dir.h"
 
 namespace storey::sim {
@@ -78,6 +80,41 @@ TEST(RandomSpec, SeedsOneToThirtyAreValidDifferAndSpread) {
   EXPECT_GT(max_slope, 33.0);
   EXPECT_LT(min_height, 3.0);
   EXPECT_GT(max_height, 4.0);
+}
+
+/// Closest surface within `range` of x (16 rays over the sphere), or range when none.
+double clearance(const RayCaster& caster, const Eigen::Vector3d& x, float range) {
+  Eigen::Vector3f origins[16], directions[16];
+  for (int i = 0; i < 16; ++i) {
+    // A Fibonacci sphere of 16 directions.
+    const double z = 1.0 - (i + 0.5) / 8.0, r = std::sqrt(std::max(0.0, 1.0 - z * z));
+    const double phi = i * M_PI * (3.0 - std::sqrt(5.0));
+    origins[i] = x.cast<float>();
+    directions[i] = Eigen::Vector3f(static_cast<float>(r * std::cos(phi)),
+                                    static_cast<float>(r * std::sin(phi)), static_cast<float>(z));
+  }
+  RayHit hits[16];
+  caster.cast16(origins, directions, range, hits);
+  double closest = range;
+  for (const RayHit& h : hits) closest = std::min(closest, static_cast<double>(h.distance));
+  return closest;
+}
+
+TEST(RandomSpec, TheRouteNeverMeetsTheBuilding) {
+  // The body centre keeps 0.2 m and the LiDAR 0.1 m from every returning
+  // surface over the whole walk, in every building of the development set.
+  for (std::uint64_t seed = 1; seed <= 30; ++seed) {
+    const BuildingSpec spec = loadBuildingSpec("random:" + std::to_string(seed));
+    const World world = makeWorld(spec);
+    const RayCaster caster(world.building.mesh);
+    for (double t = 0.0; t < world.trajectory.duration(); t += 0.1) {
+      const Pose T_world_body = world.trajectory.T_world_body(t);
+      const Eigen::Vector3d body = T_world_body.translation();
+      const Eigen::Vector3d lidar = (T_world_body * spec.sensors.T_body_lidar).translation();
+      ASSERT_GE(clearance(caster, body, 0.2f), 0.2) << "seed " << seed << ", body at t = " << t;
+      ASSERT_GE(clearance(caster, lidar, 0.1f), 0.1) << "seed " << seed << ", LiDAR at t = " << t;
+    }
+  }
 }
 
 TEST(RandomSpec, SameSeedSameSpec) {
