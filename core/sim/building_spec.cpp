@@ -92,6 +92,7 @@ void visitLayout(V& v, BuildingLayoutSpec& b) {
   v.field("glass_front_fraction", b.glass_front_fraction);
   v.field("clutter_density", b.clutter_density);
   v.field("pillar_spacing", b.pillar_spacing);
+  v.degrees("partition_angle_deg", b.partition_angle);
   v.section("stairwell", [&](auto& w) { visitStairwell(w, b.stairwell); });
   v.section("atrium", [&](auto& a) {
     a.field("rooms", b.atrium.rooms);
@@ -284,6 +285,9 @@ void BuildingSpec::validate() const {
         "building.stairwell.half_landing_depth", "must be in [1, 4] m");
   check(s.position > 0.0 && s.position < 1.0, *this, "building.stairwell.position",
         "must be in (0, 1)");
+  check(
+      b.partition_angle >= 60.0 * kDegToRad - 1e-9 && b.partition_angle <= 90.0 * kDegToRad + 1e-9,
+      *this, "building.partition_angle_deg", "must be in [60, 90] deg");
   check(b.atrium.rooms >= 0 && b.atrium.rooms <= 20, *this, "building.atrium.rooms",
         "must be in [0, 20]");
   check(b.atrium.position > 0.0 && b.atrium.position < 1.0, *this, "building.atrium.position",

@@ -4,6 +4,7 @@
 /// seconds, radians inside; the YAML gives angles in degrees. Every field has
 /// a default; docs/simulator.md lists the YAML keys.
 #include <Eigen/Core>
+#include <cmath>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -51,6 +52,10 @@ struct BuildingLayoutSpec {
       0.2;                        ///< fraction of rooms with a glass wall to the corridor [0, 1]
   double clutter_density = 0.35;  ///< objects per metre of corridor wall, per side [1/m]
   double pillar_spacing = 6.0;    ///< pillars along the corridor walls; 0 = none [m]
+  /// Angle between the room partitions and the corridor walls [rad] (YAML:
+  /// degrees, 60-90): below 90 deg the partitions lean towards +x, so rooms
+  /// are parallelograms and walls meet at that angle.
+  double partition_angle = M_PI / 2;
   StairwellSpec stairwell;
   AtriumSpec atrium;
 };

@@ -113,6 +113,9 @@ BuildingSpec draw(std::uint64_t seed, std::uint64_t attempt) {
     sensors.imu.accel_bias[i] = mm(rng.uniform(-0.05, 0.05));
   }
 
+  // Partitions at 60-85 deg to the corridor in a third of the buildings.
+  if (rng.uniform() < 0.35) b.partition_angle = mm(rng.uniform(60.0, 85.0)) * kDeg;
+
   // An atrium in a third of the buildings (the generator refuses one that
   // leaves no south room; that draw is redrawn).
   if (rng.uniform() < 0.35) {
