@@ -8,6 +8,7 @@
 
 #include "commands.h"
 #include "common/error.h"
+#include "progress_bar.h"
 
 namespace {
 
@@ -33,6 +34,7 @@ void addCommonOptions(CLI::App& cmd, storey::cli::CommonOptions& common) {
 
 int main(int argc, char** argv) {
   using namespace storey::cli;
+  installLogSink();  // log messages above the progress bars
   CLI::App app{
       "Storey: LiDAR-inertial SLAM for multi-storey buildings. A log in, one registered point "
       "cloud split into storeys out.",

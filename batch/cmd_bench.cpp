@@ -11,7 +11,6 @@
 
 #include <algorithm>
 #include <atomic>
-#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -24,6 +23,7 @@
 #include "commands.h"
 #include "common/atomic_file.h"
 #include "common/error.h"
+#include "progress_bar.h"
 
 extern char** environ;
 
@@ -117,12 +117,10 @@ int runBench(const BenchOptions& options) {
   std::atomic<std::size_t> next{0};
   std::mutex print;
   std::size_t done = 0;
-  const auto start = std::chrono::steady_clock::now();
-  auto elapsed = [&] {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  };
   std::cerr << "bench: " << seeds.size() << " seeds, " << jobs << " at a time, into "
             << options.out_dir << '\n';
+  ProgressBar bar("bench");  // seeds done, elapsed, time left; the seeds' lines above it
+  bar.update(0.0, "seeds");
 
   auto work = [&] {
     for (std::size_t i = next++; i < seeds.size(); i = next++) {
@@ -170,18 +168,16 @@ int runBench(const BenchOptions& options) {
       }
       std::lock_guard<std::mutex> lock(print);
       ++done;
-      std::cerr << "bench: [" << done << "/" << seeds.size() << "] seed " << row.seed << ": ";
+      std::string line = "bench: [" + std::to_string(done) + "/" + std::to_string(seeds.size()) +
+                         "] seed " + std::to_string(row.seed) + ": ";
       if (!row.error.empty())
-        std::cerr << "FAILED (" << row.error << ")";
+        line += "FAILED (" + row.error + ")";
       else
-        std::cerr << row.storeys << " storeys, ATE " << (row.ate_m ? fixed(*row.ate_m, 3) : "?")
-                  << " m, worst floor " << (row.worst_floor_m ? fixed(*row.worst_floor_m, 3) : "?")
-                  << " m";
-      std::cerr << "; " << fixed(elapsed(), 0) << " s elapsed, about "
-                << fixed(elapsed() / static_cast<double>(done) *
-                             static_cast<double>(seeds.size() - done),
-                         0)
-                << " s left\n";
+        line += std::to_string(row.storeys) + " storeys, ATE " +
+                (row.ate_m ? fixed(*row.ate_m, 3) : "?") + " m, worst floor " +
+                (row.worst_floor_m ? fixed(*row.worst_floor_m, 3) : "?") + " m";
+      bar.print(line);
+      bar.update(static_cast<double>(done) / static_cast<double>(seeds.size()), "seeds");
     }
   };
   std::vector<std::thread> workers;
