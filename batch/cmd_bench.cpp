@@ -4,7 +4,8 @@
 // distribution of each figure. Each step is a child `storey` process (its
 // peak memory measured, its log kept); a failing seed is a row with its error.
 #include <fcntl.h>
-#include <spawn.h>
+#include <signal.h>
+#include <sys/prctl.h>
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -25,8 +26,6 @@
 #include "common/error.h"
 #include "progress_bar.h"
 
-extern char** environ;
-
 namespace storey::cli {
 namespace {
 
@@ -44,16 +43,21 @@ StepResult runSelf(const std::vector<std::string>& args, const std::string& log_
   std::vector<char*> argv;
   for (std::string& a : argv_storage) argv.push_back(a.data());
   argv.push_back(nullptr);
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, 1, log_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC,
-                                   0644);
-  posix_spawn_file_actions_adddup2(&actions, 1, 2);
-  pid_t pid = 0;
-  const int spawned = posix_spawn(&pid, "/proc/self/exe", &actions, nullptr, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
+  // fork + exec rather than posix_spawn: the child asks to be sent SIGTERM
+  // when the thread that started it dies, so stopping `storey bench` (Ctrl-C,
+  // kill) stops its steps too. Only async-signal-safe calls before exec.
+  const pid_t parent = getpid();
+  const char* log = log_path.c_str();
+  const pid_t pid = fork();
   StepResult result;
-  if (spawned != 0) return result;
+  if (pid < 0) return result;
+  if (pid == 0) {
+    if (prctl(PR_SET_PDEATHSIG, SIGTERM) != 0 || getppid() != parent) _exit(127);
+    const int fd = open(log, O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    if (fd < 0 || dup2(fd, 1) < 0 || dup2(fd, 2) < 0) _exit(127);
+    execv("/proc/self/exe", argv.data());
+    _exit(127);
+  }
   int status = 0;
   rusage usage{};
   while (wait4(pid, &status, 0, &usage) < 0) {

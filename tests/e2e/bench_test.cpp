@@ -1,6 +1,10 @@
 // `storey bench`: the table's arithmetic (storey-height errors from floor
 // errors, distributions) on hand-made values, and one short seed end to end.
+#include <fcntl.h>
 #include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -73,6 +77,43 @@ TEST(BenchCli, OneShortSeedEndToEnd) {
   EXPECT_TRUE(std::filesystem::exists(out + "/benchmark.md"));
   EXPECT_TRUE(std::filesystem::exists(out + "/seed-18/sim/spec.yaml"));
   EXPECT_FALSE(std::filesystem::exists(out + "/seed-18/sim/simulation.bag")) << "not --keep";
+}
+
+/// Processes whose command line mentions `text` (from /proc).
+int processesMentioning(const std::string& text) {
+  int count = 0;
+  for (const auto& entry : std::filesystem::directory_iterator("/proc")) {
+    const std::string name = entry.path().filename().string();
+    if (name.find_first_not_of("0123456789") != std::string::npos) continue;
+    std::ifstream in(entry.path() / "cmdline", std::ios::binary);
+    std::string cmdline((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    if (cmdline.find(text) != std::string::npos) ++count;
+  }
+  return count;
+}
+
+TEST(BenchCli, StoppingTheBenchStopsItsSteps) {
+  test::TempDir dir;
+  const std::string out = (dir.path() / "stopped_bench").string();
+  const pid_t pid = fork();
+  ASSERT_GE(pid, 0);
+  if (pid == 0) {
+    const int null = open("/dev/null", O_WRONLY);
+    dup2(null, 1);
+    dup2(null, 2);
+    execl(STOREY_BINARY, STOREY_BINARY, "bench", "--seeds", "1", "--jobs", "1", "-o", out.c_str(),
+          static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  // Wait until its first step (the simulation of seed 1, minutes long) runs.
+  for (int i = 0; i < 100 && processesMentioning(out + "/seed-1/sim") == 0; ++i) usleep(100000);
+  ASSERT_GT(processesMentioning(out + "/seed-1/sim"), 0) << "the bench did not start its step";
+  kill(pid, SIGTERM);
+  int status = 0;
+  waitpid(pid, &status, 0);
+  int left = 1;
+  for (int i = 0; i < 50 && (left = processesMentioning(out)) > 0; ++i) usleep(100000);
+  EXPECT_EQ(left, 0) << "steps outlived the bench";
 }
 
 }  // namespace
