@@ -8,6 +8,7 @@
 
 #include "commands.h"
 #include "common/error.h"
+#include "progress_bar.h"
 
 namespace {
 
@@ -24,14 +25,16 @@ void addCommonOptions(CLI::App& cmd, storey::cli::CommonOptions& common) {
                  "IMU samples (CSV, docs/formats.md) for a Velodyne pcap or a PCD folder");
   cmd.add_option("--imu-time-offset", common.imu_csv_time_offset,
                  "seconds added to the IMU CSV stamps to put them on the LiDAR's clock");
-  cmd.add_option("--velodyne-calibration", common.velodyne_calibration,
-                 "VeloView calibration XML for a Velodyne pcap (default: the model's datasheet table)");
+  cmd.add_option(
+      "--velodyne-calibration", common.velodyne_calibration,
+      "VeloView calibration XML for a Velodyne pcap (default: the model's datasheet table)");
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
   using namespace storey::cli;
+  installLogSink();  // log messages above the progress bars
   CLI::App app{
       "Storey: LiDAR-inertial SLAM for multi-storey buildings. A log in, one registered point "
       "cloud split into storeys out.",
@@ -42,15 +45,17 @@ int main(int argc, char** argv) {
   RunOptions run;
   auto* run_cmd = app.add_subcommand(
       "run", "map a log (ROS1 bag); without LOG the built-in simulated building is mapped");
-  run_cmd->add_option("LOG", run.log_path,
-                      "input log: ROS1 bag, Velodyne pcap (+ --imu-csv) or PCD folder (+ --imu-csv)");
+  run_cmd->add_option(
+      "LOG", run.log_path,
+      "input log: ROS1 bag, Velodyne pcap (+ --imu-csv) or PCD folder (+ --imu-csv)");
   run_cmd->add_option("-o,--out", run.out_dir, "output folder")->capture_default_str();
   run_cmd->add_flag("--no-srp", run.no_srp, "switch the SRP back end off (odometry only)");
   run_cmd->add_flag("--no-render", run.no_render,
                     "no PNG renders at the end (render them later with `storey render OUT`)");
-  run_cmd->add_option("--preset", run.preset,
-                      "without LOG: the simulated building to map (tiny, default, building-a, "
-                      "building-b)")
+  run_cmd
+      ->add_option("--preset", run.preset,
+                   "without LOG: the simulated building to map (tiny, default, building-a, "
+                   "building-b, or random:SEED)")
       ->capture_default_str();
   addCommonOptions(*run_cmd, run.common);
 
@@ -65,8 +70,11 @@ int main(int argc, char** argv) {
       "simulate",
       "simulate a multi-storey building walk: LiDAR (VLP-16, VLP-32C, HDL-32E, OS1-64) + IMU in a "
       "ROS1 bag and/or a Velodyne pcap, with ground truth");
-  sim_cmd->add_option("BUILDING", simulate.preset_or_spec,
-                      "preset (tiny, default, building-a, building-b) or building spec YAML")
+  sim_cmd
+      ->add_option(
+          "BUILDING", simulate.preset_or_spec,
+          "preset (tiny, default, building-a, building-b), random:SEED (a random building, "
+          "sensor rig and walk) or building spec YAML")
       ->capture_default_str();
   sim_cmd->add_option("-o,--out", simulate.out_dir, "output folder")->required();
   sim_cmd->add_option("--seed", simulate.seed, "random seed (default: the spec's)");
@@ -81,10 +89,11 @@ int main(int argc, char** argv) {
   sim_cmd->add_option("--duration", simulate.max_duration, "stop the sensors after this time [s]");
   sim_cmd->add_option("--threads", simulate.threads, "ray-casting threads (0: all cores)")
       ->capture_default_str();
-  sim_cmd->add_flag("--pcap", simulate.pcap,
-                    "also write simulation.pcap (Velodyne packets as VeloView records them) + imu.csv");
-  sim_cmd->add_flag_callback("--no-bag", [&simulate] { simulate.bag = false; },
-                             "no ROS1 bag (with --pcap)");
+  sim_cmd->add_flag(
+      "--pcap", simulate.pcap,
+      "also write simulation.pcap (Velodyne packets as VeloView records them) + imu.csv");
+  sim_cmd->add_flag_callback(
+      "--no-bag", [&simulate] { simulate.bag = false; }, "no ROS1 bag (with --pcap)");
 
   EvalOptions eval;
   auto* eval_cmd = app.add_subcommand(
@@ -102,8 +111,9 @@ int main(int argc, char** argv) {
                        "JSON result file (default: <est>.eval.json; 'none': no file; '-': stdout)");
   eval_cmd->add_option("--rpe-length", eval.rpe_lengths, "RPE segment length [m], repeatable")
       ->capture_default_str();
-  eval_cmd->add_option("--max-dt", eval.max_time_difference,
-                       "timestamp tolerance of the association [s]")
+  eval_cmd
+      ->add_option("--max-dt", eval.max_time_difference,
+                   "timestamp tolerance of the association [s]")
       ->capture_default_str();
   eval_cmd->add_option("--threads", eval.threads, "map distance threads (0: all cores)")
       ->capture_default_str();
@@ -118,8 +128,9 @@ int main(int argc, char** argv) {
   bias_cmd->add_option("--csv", bias.csv_path, "per-scan table (CSV)");
   bias_cmd->add_option("--from", bias.from, "first scan evaluated [s after the log's first scan]");
   bias_cmd->add_option("--to", bias.to, "last scan evaluated [s after the log's first scan]");
-  bias_cmd->add_option("--max-dt", bias.max_time_difference,
-                       "truth stamp tolerance at the ends of the truth [s]")
+  bias_cmd
+      ->add_option("--max-dt", bias.max_time_difference,
+                   "truth stamp tolerance at the ends of the truth [s]")
       ->capture_default_str();
   addCommonOptions(*bias_cmd, bias.common);
 
@@ -145,6 +156,24 @@ int main(int argc, char** argv) {
   render_cmd->add_option("--max-points", render.max_points,
                          "map points drawn at most (uniform subsample; default 2000000)");
 
+  BenchOptions bench;
+  auto* bench_cmd = app.add_subcommand(
+      "bench",
+      "benchmark on random buildings: simulate random:SEED, map it with default settings, "
+      "evaluate; one table with a row per seed and the distributions (docs/benchmarks.md)");
+  bench_cmd->add_option("--seeds", bench.seeds, "seeds: 1-30, 1,4,9 or 1-10,1001-1010")
+      ->capture_default_str();
+  bench_cmd
+      ->add_option("-o,--out", bench.out_dir,
+                   "output folder (a folder per seed, "
+                   "benchmark.md, benchmark.json)")
+      ->required();
+  bench_cmd->add_option("--jobs", bench.jobs, "seeds at a time (0: the number of cores)")
+      ->capture_default_str();
+  bench_cmd->add_option("--duration", bench.max_duration,
+                        "simulate only the first S seconds of each walk (quick checks)");
+  bench_cmd->add_flag("--keep", bench.keep, "keep every seed's bag, mesh and map");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -162,6 +191,7 @@ int main(int argc, char** argv) {
     }
     if (*eval_cmd) return runEval(eval);
     if (*render_cmd) return runRender(render);
+    if (*bench_cmd) return runBench(bench);
     if (*bias_cmd) return runRegistrationBias(bias);
   } catch (const storey::Cancelled& e) {
     std::cerr << "storey: " << e.what() << '\n';

@@ -5,6 +5,7 @@
 
 #include "commands.h"
 #include "config/config.h"
+#include "progress_bar.h"
 #include "render/render.h"
 
 namespace storey::cli {
@@ -24,7 +25,9 @@ int runRender(const RenderOptions& options) {
   request.keyframe = options.keyframe;
   request.ground_truth = options.ground_truth;
   request.compare = options.compare;
-  const render::RenderSummary summary = render::renderRun(request, r);
+  ProgressBar bar("render");
+  const render::RenderSummary summary = render::renderRun(request, r, bar.callback());
+  bar.done();
   for (const std::string& note : summary.notes)
     std::cerr << "storey render: note: " << note << '\n';
   std::cout << std::fixed << std::setprecision(1) << summary.images.size() << " images in "

@@ -9,10 +9,10 @@
 #include "config/config.h"
 #include "options_config.h"
 #include "pipeline/pipeline.h"
+#include "pipeline/run_summary.h"
 #include "progress_bar.h"
 #include "render/render.h"
 #include "sim/simulator.h"
-#include "trajectory/drift.h"
 
 namespace storey::cli {
 
@@ -40,30 +40,28 @@ int runRun(const RunOptions& options) {
                            (std::filesystem::path(sim_dir) / sim::kCalibrationFile).string());
   }
   ProgressBar bar("run");
-  const PipelineResult result = runPipeline(log_path, config, options.out_dir, bar.callback());
+  const PipelineResult result =
+      runPipeline(log_path, config, options.out_dir, bar.callback(), bar.logTimeCallback());
   bar.done();
-  const EndPointDrift drift = endPointDrift(result.trajectory);
-  std::cout << std::fixed << std::setprecision(3) << result.trajectory.size() << " scans, path "
-            << drift.path_length << " m, end-point drift " << drift.dxyz << " m ("
-            << std::setprecision(2) << drift.percent_of_path() << " % of the path)\n"
-            << "output: " << options.out_dir << " (see report.json)\n";
-  if (!config.backend.srp)
-    std::cout << "note: SRP back end switched off; trajectory.tum is the odometry\n";
   if (config.render.enabled) {
     // The SLAM outputs are written: a render failure is only a warning here.
     try {
       render::RenderRequest request;
       request.out_dir = options.out_dir;
       request.ground_truth = ground_truth;
-      const render::RenderSummary summary = render::renderRun(request, config.render);
+      ProgressBar render_bar("render");
+      const render::RenderSummary summary =
+          render::renderRun(request, config.render, render_bar.callback());
+      render_bar.done();
       std::cout << summary.images.size() << " renders in " << options.out_dir << "/renders ("
-                << std::setprecision(1) << summary.seconds << " s), report.html\n";
+                << std::fixed << std::setprecision(1) << summary.seconds << " s)\n";
     } catch (const std::exception& e) {
       std::cerr << "storey run: warning: renders not written: " << e.what()
                 << " (the mapping outputs are complete; retry with `storey render "
                 << options.out_dir << "`)\n";
     }
   }
+  std::cout << "storey run: finished\n" << summariseRun(result.report_json, options.out_dir).text();
   return 0;
 }
 

@@ -28,12 +28,12 @@ int runSimulate(const SimulateOptions& options) {
   sim_options.threads = options.threads;
   sim_options.formats.bag = options.bag;
   sim_options.formats.pcap = options.pcap;
-  if (!options.bag && !options.pcap) throw Error("--no-bag needs --pcap (nothing would be written)");
+  if (!options.bag && !options.pcap)
+    throw Error("--no-bag needs --pcap (nothing would be written)");
   if (sim_options.max_duration < 0.0) throw Error("--duration must be positive");
   if (sim_options.threads < 0) throw Error("--threads must be 0 (all cores) or more");
-  const sim::SimulationResult result = sim::simulate(
-      spec, sim_options, options.out_dir,
-      bar.callback());
+  const sim::SimulationResult result =
+      sim::simulate(spec, sim_options, options.out_dir, bar.callback());
   bar.done();
 
   std::cout << std::fixed << std::setprecision(1) << "simulated '" << spec.name << "' (seed "

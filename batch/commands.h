@@ -17,7 +17,8 @@ struct CommonOptions {
   std::string imu_topic;         ///< --imu-topic override
   std::string imu_csv;           ///< --imu-csv: IMU CSV for a pcap or PCD folder (input.imu_csv)
   std::optional<double> imu_csv_time_offset;  ///< --imu-time-offset: added to the CSV stamps [s]
-  std::string velodyne_calibration;  ///< --velodyne-calibration: VeloView XML (input.velodyne_calibration)
+  std::string
+      velodyne_calibration;  ///< --velodyne-calibration: VeloView XML (input.velodyne_calibration)
 };
 
 struct RunOptions {
@@ -51,9 +52,11 @@ struct SimulateOptions {
 
 struct EvalOptions {
   std::string gt_path, est_path, mesh_path, map_path, storeys_path;
-  std::string est_storeys_path;  ///< --est-storeys: estimated storeys.json; empty = storeys.json next to --est
-  std::string planes_path;       ///< --planes: planes.json whose associations are checked with the truth
-  std::string json_path;         ///< --json: empty = <est stem>.eval.json next to --est; "none" = no file; "-" = JSON on stdout
+  std::string est_storeys_path;  ///< --est-storeys: estimated storeys.json; empty = storeys.json
+                                 ///< next to --est
+  std::string planes_path;  ///< --planes: planes.json whose associations are checked with the truth
+  std::string json_path;  ///< --json: empty = <est stem>.eval.json next to --est; "none" = no file;
+                          ///< "-" = JSON on stdout
   std::vector<double> rpe_lengths{10.0};  ///< --rpe-length (repeatable): RPE segment lengths [m]
   double max_time_difference = 0.01;      ///< --max-dt: timestamp tolerance of the association [s]
   int threads = 0;                        ///< --threads: map distance threads, 0 = all cores
@@ -66,7 +69,15 @@ struct RegistrationBiasOptions {
   std::string csv_path;  ///< --csv: per-scan table; empty = none
   double from = 0.0;     ///< --from: seconds after the log's first scan
   double to = std::numeric_limits<double>::infinity();  ///< --to: same clock
-  double max_time_difference = 0.01;  ///< --max-dt: truth stamp tolerance [s]
+  double max_time_difference = 0.01;                    ///< --max-dt: truth stamp tolerance [s]
+};
+
+struct BenchOptions {
+  std::string seeds = "1-30";  ///< --seeds: e.g. 1-30, 1,4,9, 1-10,1001-1010
+  std::string out_dir;         ///< -o: one folder per seed, benchmark.md and .json
+  int jobs = 0;                ///< --jobs: seeds at a time; 0 = the number of cores
+  double max_duration = 0.0;   ///< --duration: simulate only this much of each walk [s]; 0 = all
+  bool keep = false;           ///< --keep: keep bags, meshes and maps
 };
 
 struct RenderOptions {
@@ -85,6 +96,7 @@ int runInfo(const InfoOptions& options);
 int runSimulate(const SimulateOptions& options);
 int runEval(const EvalOptions& options);
 int runRender(const RenderOptions& options);
+int runBench(const BenchOptions& options);
 int runRegistrationBias(const RegistrationBiasOptions& options);
 
 }  // namespace storey::cli

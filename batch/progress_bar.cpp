@@ -1,40 +1,174 @@
 #include "progress_bar.h"
 
+#include <sys/ioctl.h>
 #include <unistd.h>
 
 #include <algorithm>
-#include <iomanip>
+#include <chrono>
+#include <cstdlib>
 #include <iostream>
+
+#include "common/log.h"
 
 namespace storey::cli {
 
-ProgressBar::ProgressBar(std::string label, bool enabled)
-    : label_(std::move(label)), enabled_(enabled), tty_(::isatty(STDERR_FILENO) == 1) {}
+namespace {
 
-ProgressBar::~ProgressBar() { done(); }
+constexpr int kBarWidth = 24;
+constexpr double kHeartbeatSeconds = 30.0;  ///< plain lines: at least one this often
+
+/// The bar log messages are printed above (null: none shown).
+std::mutex& activeMutex() {
+  static std::mutex m;
+  return m;
+}
+ProgressBar*& active() {
+  static ProgressBar* bar = nullptr;
+  return bar;
+}
+
+bool stderrIsTerminal() {
+  const char* term = std::getenv("TERM");
+  return ::isatty(STDERR_FILENO) == 1 && !(term != nullptr && std::string(term) == "dumb");
+}
+
+/// Columns of the terminal on stderr (80 when unknown).
+std::size_t terminalWidth() {
+  winsize size{};
+  if (::ioctl(STDERR_FILENO, TIOCGWINSZ, &size) == 0 && size.ws_col > 0) return size.ws_col;
+  return 80;
+}
+
+int percentOf(double fraction) {
+  return static_cast<int>(std::clamp(fraction, 0.0, 1.0) * 100.0);
+}
+
+}  // namespace
+
+ProgressBar::ProgressBar(std::string label, bool enabled)
+    : ProgressBar(std::move(label),
+                  !enabled             ? Mode::kOff
+                  : stderrIsTerminal() ? Mode::kBar
+                                       : Mode::kLines,
+                  std::cerr, nullptr) {}
+
+ProgressBar::ProgressBar(std::string label, Mode mode, std::ostream& out,
+                         std::function<double()> clock)
+    : label_(std::move(label)),
+      mode_(mode),
+      out_(out),
+      clock_(clock ? std::move(clock) : [] { return ProgressMeter::steadySeconds(); }),
+      meter_(clock_()) {
+  last_line_ = clock_();
+  if (mode_ == Mode::kOff) return;
+  {
+    std::lock_guard<std::mutex> lock(activeMutex());
+    active() = this;
+  }
+  if (!clock) ticker_ = std::thread([this] { tick(); });
+}
+
+ProgressBar::~ProgressBar() {
+  done();
+}
 
 bool ProgressBar::update(double fraction, const std::string& stage) {
-  if (!enabled_) return true;
-  fraction = std::clamp(fraction, 0.0, 1.0);
-  const int percent = static_cast<int>(fraction * 100.0);
-  if (tty_) {
-    constexpr int kWidth = 40;
-    const int filled = static_cast<int>(fraction * kWidth);
-    std::cerr << "\r[" << std::string(filled, '#') << std::string(kWidth - filled, ' ') << "] "
-              << std::setw(3) << percent << "% " << std::left << std::setw(20) << stage
-              << std::right << std::flush;
-    drawn_ = true;
-  } else if (percent / 10 != last_decile_ || stage != last_stage_) {
-    std::cerr << "storey " << label_ << ": " << percent << "% " << stage << '\n';
-    last_decile_ = percent / 10;
-    last_stage_ = stage;
+  if (mode_ == Mode::kOff) return true;
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (finished_) return true;
+  const double now = clock_();
+  meter_.update(fraction, stage, now);
+  const int percent = percentOf(fraction);
+  if (mode_ == Mode::kBar) {
+    if (stage != last_stage_ || percent != last_percent_) draw();
+  } else if (stage != last_stage_ || percent / 10 != last_decile_ ||
+             now - last_line_ >= kHeartbeatSeconds) {
+    line(now);
   }
+  last_stage_ = stage;
+  last_percent_ = percent;
   return true;
 }
 
+void ProgressBar::setLogTime(double log_seconds) {
+  if (mode_ == Mode::kOff) return;
+  std::lock_guard<std::mutex> lock(mutex_);
+  meter_.setLogTime(log_seconds, clock_());
+}
+
+void ProgressBar::print(const std::string& text) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (drawn_) out_ << "\r\033[K";
+  out_ << text << '\n';
+  if (drawn_) draw();
+  out_ << std::flush;
+}
+
 void ProgressBar::done() {
-  if (drawn_) std::cerr << '\n';
-  drawn_ = false;
+  {
+    std::lock_guard<std::mutex> lock(activeMutex());
+    if (active() == this) active() = nullptr;
+  }
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (finished_) return;
+    finished_ = true;
+    if (drawn_) {
+      draw();
+      out_ << '\n' << std::flush;
+    }
+    drawn_ = false;
+  }
+  wake_.notify_all();
+  if (ticker_.joinable()) ticker_.join();
+}
+
+void ProgressBar::draw() {
+  const ProgressReading r = meter_.reading(clock_());
+  const int filled = static_cast<int>(std::clamp(r.fraction, 0.0, 1.0) * kBarWidth);
+  std::string text = "[" + std::string(filled, '#') + std::string(kBarWidth - filled, ' ') + "] ";
+  const std::string percent = std::to_string(percentOf(r.fraction));
+  text += std::string(3 - std::min<std::size_t>(3, percent.size()), ' ') + percent + "% " +
+          r.stage + "  " + timingText(r);
+  // Longer than the terminal's width it would wrap and '\r' would not redraw it.
+  const std::size_t width = terminalWidth();
+  if (text.size() >= width) text.resize(width - 1);
+  out_ << "\r\033[K" << text << std::flush;
+  drawn_ = true;
+}
+
+void ProgressBar::line(double now) {
+  const ProgressReading r = meter_.reading(now);
+  out_ << "storey " << label_ << ": " << r.stage << ' ' << percentOf(r.fraction) << "% ("
+       << timingText(r) << ")\n"
+       << std::flush;
+  last_decile_ = percentOf(r.fraction) / 10;
+  last_line_ = now;
+}
+
+void ProgressBar::tick() {
+  std::unique_lock<std::mutex> lock(mutex_);
+  while (!finished_) {
+    wake_.wait_for(lock, std::chrono::seconds(1));
+    if (finished_ || last_stage_.empty()) continue;
+    if (mode_ == Mode::kBar) {
+      draw();
+    } else if (clock_() - last_line_ >= kHeartbeatSeconds) {
+      line(clock_());
+    }
+  }
+}
+
+void installLogSink() {
+  setLogSink([](LogLevel level, const std::string& message) {
+    if (level == LogLevel::kDebug) return;
+    const std::string text = formatLogLine(level, message);
+    std::lock_guard<std::mutex> lock(activeMutex());
+    if (active() != nullptr)
+      active()->print(text);
+    else
+      std::cerr << text << '\n';
+  });
 }
 
 }  // namespace storey::cli

@@ -1,6 +1,7 @@
 // The render step: which images, in which order, and the report rewrite.
 #include "render/render.h"
 
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
@@ -70,10 +71,15 @@ void parseViewList(const std::string& list, RenderViews& views) {
   views = v;
 }
 
-RenderSummary renderRun(const RenderRequest& request, const RenderConfig& config) {
+RenderSummary renderRun(const RenderRequest& request, const RenderConfig& config,
+                        const ProgressFn& progress) {
   const auto start = std::chrono::steady_clock::now();
   config.validate();
   RenderSummary summary;
+  auto report = [&progress](double fraction, const char* stage) {
+    if (progress && !progress(fraction, stage)) throw Cancelled();
+  };
+  report(0.0, "reading the run");
   const RunData run = loadRun(request.out_dir, static_cast<std::size_t>(config.max_display_points));
   summary.notes = run.notes;
   summary.map_points = run.map.file_points;
@@ -113,7 +119,17 @@ RenderSummary renderRun(const RenderRequest& request, const RenderConfig& config
   XDisplayGuard display(config.width, config.height);
   summary.started_xvfb = display.startedXvfb();
 
+  // The images to draw, counted first for the progress fraction.
+  std::vector<NamedFigure> storey_tops;
+  if (config.views.storeys) storey_tops = storeyTopFigures(context);
+  const bool draw_srp_map = config.views.srp && !run.planes.empty();
+  const bool draw_keyframe = want_keyframe && keyframe >= 0;
+  const std::size_t planned = (config.views.elevation ? 2 : 0) + storey_tops.size() +
+                              (draw_srp_map ? 1 : 0) + (draw_keyframe ? 1 : 0) +
+                              (comparison ? 2 : 0);
   auto draw = [&](const Figure& figure, const std::string& file, const std::string& caption) {
+    report(static_cast<double>(summary.images.size()) / std::max<std::size_t>(planned, 1),
+           "drawing images");
     renderFigure(figure, (renders / file).string());
     summary.images.push_back({"renders/" + file, figure.title, caption});
     logInfo("render: wrote " + (renders / file).string());
@@ -125,13 +141,13 @@ RenderSummary renderRun(const RenderRequest& request, const RenderConfig& config
     draw(elevationFigure(context, true), "elevation_side.png", "The same from the side.");
   }
   if (config.views.storeys) {
-    for (const NamedFigure& f : storeyTopFigures(context))
+    for (const NamedFigure& f : storey_tops)
       draw(f.figure, f.file,
            "From above, points coloured by height above the floor (ceiling left out), the "
            "trajectory walked on this storey in black.");
   }
   if (config.views.srp) {
-    if (run.planes.empty())
+    if (!draw_srp_map)
       summary.notes.push_back("no SRP in planes.json: no SRP map view");
     else
       draw(
@@ -141,7 +157,7 @@ RenderSummary renderRun(const RenderRequest& request, const RenderConfig& config
           "points on a patch take its colour, the rest of the map is grey.");
   }
   if (want_keyframe) {
-    if (keyframe < 0) {
+    if (!draw_keyframe) {
       summary.notes.push_back("no keyframe with SRPs: no keyframe view");
     } else {
       char name[48];
@@ -159,6 +175,7 @@ RenderSummary renderRun(const RenderRequest& request, const RenderConfig& config
          "The same from the front: vertical drift between storeys shows here.");
   }
 
+  report(1.0, "drawing images");
   // report.md with the images, and report.html next to it.
   const fs::path report_json = fs::path(request.out_dir) / "report.json";
   if (fs::exists(report_json)) {

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "common/progress.h"
 #include "config/render_config.h"
 #include "export/report_markdown.h"
 
@@ -30,8 +31,11 @@ struct RenderSummary {
 };
 
 /// Throws storey::Error (missing or malformed files, no display possible,
-/// a keyframe that does not exist, ...).
-RenderSummary renderRun(const RenderRequest& request, const RenderConfig& config);
+/// a keyframe that does not exist, ...). `progress` gets the stages "reading
+/// the run" and "drawing images" (the fraction of the images drawn); false
+/// cancels (storey::Cancelled).
+RenderSummary renderRun(const RenderRequest& request, const RenderConfig& config,
+                        const ProgressFn& progress = nullptr);
 
 /// Image names a view list accepts: elevation, storeys, srp, keyframe, trajectories.
 /// Parses a comma-separated list ("all" = every view) into `views`; throws

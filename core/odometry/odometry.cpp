@@ -136,11 +136,11 @@ void LidarInertialOdometry::tryProcess(bool at_end) {
     const std::int64_t end_ns = ref_ns + secondsToNs(std::max(0.0f, scan.timeSpan().second));
     if (imu_.back().stamp_ns < end_ns) {
       if (!at_end) return;
-      if (imu_.back().stamp_ns < ref_ns) {
-        drops_.after_last_imu += static_cast<std::int64_t>(pending_.size());
-        pending_.clear();
-        return;
-      }
+      // The log ends inside this scan: it cannot be deskewed (nor can any
+      // later one); they are dropped and counted.
+      drops_.after_last_imu += static_cast<std::int64_t>(pending_.size());
+      pending_.clear();
+      return;
     }
     if (scan.points.empty()) {
       ++drops_.empty;

@@ -60,7 +60,7 @@ struct OdometryResult {
 /// Why scans were not used (besides errors); counts in the run report.
 struct OdometryDrops {
   std::int64_t before_first_imu = 0;  ///< scan earlier than the first IMU sample
-  std::int64_t after_last_imu = 0;    ///< IMU data end before the scan
+  std::int64_t after_last_imu = 0;    ///< the IMU data end before the scan does (end of log)
   std::int64_t empty = 0;             ///< scan without points
 };
 

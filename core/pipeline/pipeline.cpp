@@ -15,9 +15,11 @@
 namespace storey {
 
 PipelineResult runPipeline(const std::string& log_path, const Config& config,
-                           const std::string& out_dir, const ProgressFn& progress) {
+                           const std::string& out_dir, const ProgressFn& progress,
+                           const LogTimeFn& log_time) {
   config.validate();
   const Stopwatch wall;
+  const LogRecorder warnings;  // every warning of the run, for its report
   std::unique_ptr<LogReader> reader = openLog(log_path, config.input, config.sensor);
   logInfo("reading " + reader->describe());
   LidarInertialOdometry odometry(config.odometry, config.sensor);
@@ -26,7 +28,7 @@ PipelineResult runPipeline(const std::string& log_path, const Config& config,
   RunReportBuilder report(config);
 
   // Odometry per scan, back end per keyframe, map scans chosen: one pass.
-  streamLog(log_path, *reader, odometry, *backend, map_scans, report, progress);
+  streamLog(log_path, *reader, odometry, *backend, map_scans, report, progress, log_time);
   if (progress && !progress(1.0, "back end: final optimisation")) throw Cancelled();
   SlamResult slam = backend->finish();
   report.setInput(log_path, reader->stats(), odometry.drops());
@@ -47,6 +49,7 @@ PipelineResult runPipeline(const std::string& log_path, const Config& config,
   }
   if (progress && !progress(1.0, "writing outputs")) throw Cancelled();
   report.setTotalWallTime(wall.seconds());
+  report.setWarnings(warnings.warnings(), warnings.warningCount());
   result.report_json = writeRunOutputs(out_dir, slam, report, result.files);
   result.odometry = std::move(slam.odometry);
   result.trajectory = std::move(slam.trajectory);

@@ -34,11 +34,14 @@ struct PipelineResult {
 /// Runs the pipeline on `log_path` and writes into `out_dir` (created when
 /// missing): odometry.tum, trajectory.tum, trajectory_kitti*.txt, keyframes.tum,
 /// planes.json (back end on), map.las/ply/pcd, storeys/, storeys.json (map on),
-/// report.json and report.md (names and formats in docs/outputs.md).
+/// report.json, report.md and report.html (names and formats in docs/outputs.md).
 /// Every file is written atomically and only after the whole log was
 /// processed, so a failed run leaves no output behind. `progress` may return
-/// false to cancel (storey::Cancelled is thrown). Throws storey::Error on bad input.
+/// false to cancel (storey::Cancelled is thrown); `log_time` gets the log time
+/// read so far with each progress report of the odometry stage. The warnings
+/// logged during the run go into the report. Throws storey::Error on bad input.
 PipelineResult runPipeline(const std::string& log_path, const Config& config,
-                           const std::string& out_dir, const ProgressFn& progress = nullptr);
+                           const std::string& out_dir, const ProgressFn& progress = nullptr,
+                           const LogTimeFn& log_time = nullptr);
 
 }  // namespace storey

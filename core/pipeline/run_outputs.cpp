@@ -7,6 +7,7 @@
 #include "common/error.h"
 #include "export/kitti.h"
 #include "export/planes_json.h"
+#include "export/report_html.h"
 #include "export/report_markdown.h"
 #include "trajectory/tum.h"
 
@@ -38,12 +39,13 @@ std::string writeRunOutputs(const std::string& out_dir, const SlamResult& slam,
     fs::remove(out / "planes.json", ec);  // a previous run's would be mistaken for this one's
   }
   // The report last, with the whole run's wall time and the file list.
-  files.insert(files.end(), {"report.json", "report.md"});
+  files.insert(files.end(), {"report.json", "report.md", "report.html"});
   report.setFiles(files);
   const nlohmann::json report_json = report.json();
   const std::string report_text = report_json.dump(2);
   writeFileAtomically((out / "report.json").string(), report_text + "\n");
   writeReportMarkdown(report_json, (out / "report.md").string());
+  writeReportHtml(report_text, (out / "report.html").string());  // the render step adds images
   return report_text;
 }
 

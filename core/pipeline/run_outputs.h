@@ -13,9 +13,9 @@ namespace storey {
 void createOutputFolder(const std::string& out_dir);
 
 /// Writes the trajectories (TUM, KITTI), keyframes.tum, planes.json (or
-/// removes a stale one when the back end is off), then report.json and
-/// report.md last. `files` (relative to out_dir) is extended with them.
-/// Returns the report as written (report.json's text).
+/// removes a stale one when the back end is off), then report.json,
+/// report.md and report.html (without images) last. `files` (relative to out_dir) is extended with
+/// them. Returns the report as written (report.json's text).
 std::string writeRunOutputs(const std::string& out_dir, const SlamResult& slam,
                             RunReportBuilder& report, std::vector<std::string>& files);
 

@@ -26,6 +26,8 @@ struct RunReportBuilder::Data {
   std::optional<nlohmann::json> map, storeys;
   std::optional<double> wall_seconds_total;
   std::optional<std::vector<std::string>> files;
+  std::vector<std::string> warnings;
+  std::size_t warning_count = 0;
 };
 
 RunReportBuilder::RunReportBuilder(const Config& config) : data_(std::make_unique<Data>()) {
@@ -144,6 +146,11 @@ void RunReportBuilder::setFiles(const std::vector<std::string>& files) {
   data_->files = files;
 }
 
+void RunReportBuilder::setWarnings(const std::vector<std::string>& warnings, std::size_t count) {
+  data_->warnings = warnings;
+  data_->warning_count = count;
+}
+
 namespace {
 
 nlohmann::json summary(const std::vector<double>& samples) {
@@ -259,6 +266,11 @@ nlohmann::json RunReportBuilder::json() const {
   if (d.storeys) report["storeys"] = *d.storeys;
   if (d.wall_seconds_total) report["wall_time_s_total"] = *d.wall_seconds_total;
   if (d.files) report["files"] = *d.files;
+  report["warning_count"] = d.warning_count;
+  report["warnings"] = d.warnings;
+  if (d.warning_count > d.warnings.size())
+    report["warnings"].push_back(std::to_string(d.warning_count - d.warnings.size()) +
+                                 " more warnings not listed");
   return report;
 }
 

@@ -36,6 +36,8 @@ class RunReportBuilder {
   /// Wall time of the whole run [s] and the files written (relative to OUT).
   void setTotalWallTime(double seconds);
   void setFiles(const std::vector<std::string>& files);
+  /// The warnings logged during the run (the first ones) and how many there were.
+  void setWarnings(const std::vector<std::string>& warnings, std::size_t count);
   /// The report.
   nlohmann::json json() const;
 

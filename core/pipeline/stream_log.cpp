@@ -1,5 +1,7 @@
 #include "pipeline/stream_log.h"
 
+#include <optional>
+
 #include "common/error.h"
 
 namespace storey {
@@ -19,7 +21,7 @@ void passOn(OdometryResult& scan, Backend& backend, MapScanSelector& map_scans,
 
 void streamLog(const std::string& log_path, LogReader& reader, LidarInertialOdometry& odometry,
                Backend& backend, MapScanSelector& map_scans, RunReportBuilder& report,
-               const ProgressFn& progress) {
+               const ProgressFn& progress, const LogTimeFn& log_time) {
   std::size_t scans = 0;
   OdometryResult result;
   auto drain = [&] {
@@ -30,14 +32,20 @@ void streamLog(const std::string& log_path, LogReader& reader, LidarInertialOdom
   };
   LogMessage message;
   std::int64_t messages = 0;
+  std::optional<double> first_stamp;  // of the log's first message [s]
+  double stamp = 0.0;                 // of the latest message [s]
   while (reader.next(message)) {
     if (auto* scan = std::get_if<Scan>(&message)) {
+      stamp = scan->time();
       odometry.addScan(std::move(*scan));
     } else {
+      stamp = std::get<ImuSample>(message).time();
       odometry.addImu(std::get<ImuSample>(message));
     }
+    if (!first_stamp) first_stamp = stamp;
     drain();
     if (progress && (++messages % 256) == 0) {
+      if (log_time) log_time(stamp - *first_stamp);
       const double fraction = reader.progress();
       if (!progress(fraction < 0.0 ? 0.0 : fraction, "odometry")) throw Cancelled();
     }

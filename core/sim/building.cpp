@@ -1,5 +1,6 @@
 #include "sim/building.h"
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 
@@ -126,12 +127,80 @@ class Generator {
         r.glass_front = rng_.uniform() < b_.glass_front_fraction;
       }
     }
+    layoutAtrium();
+    // Partitions at an angle: the offset along x between a partition's ends.
+    const double angle = b_.partition_angle;
+    cot_ = std::abs(angle - M_PI / 2) < 1e-9 ? 0.0 : std::cos(angle) / std::sin(angle);
+    if (cot_ != 0.0) {
+      double narrowest = 1e300;
+      for (const auto* rooms : {&south_rooms_, &north_rooms_})
+        for (const Room& r : *rooms) narrowest = std::min(narrowest, r.x1 - r.x0);
+      const double offset = std::max(y_north_ - yc_, -y_south_ - yc_) * cot_;
+      if (offset > 0.45 * narrowest)
+        throw Error(spec_.source + ": key 'building.partition_angle_deg' is too oblique for " +
+                    "rooms this deep and narrow (the partitions would cross)");
+    }
   }
+
+  /// Whether the boundary of a room at x (its x0 or x1) is a partition that
+  /// leans, rather than an end wall or a stairwell wall.
+  bool leans(bool north, double x) const {
+    if (cot_ == 0.0 || x <= 1e-9 || x >= L_ - 1e-9) return false;
+    if (north && hasStairs() &&
+        (std::abs(x - (xs_ - b_.stairwell.width / 2)) < 1e-9 ||
+         std::abs(x - (xs_ + b_.stairwell.width / 2)) < 1e-9))
+      return false;
+    return true;
+  }
+  /// x of a room boundary (centreline) at distance `y` from the corridor axis.
+  double boundaryAt(bool north, double x, double y) const {
+    return leans(north, x) ? x + (y - yc_) * cot_ : x;
+  }
+
+  /// A partition from the corridor wall line to the outer wall, leaning when cot_ != 0.
+  void addPartition(bool north, double x, double z0, double z1) {
+    const double y_outer = north ? y_north_ : y_south_, y_corridor = north ? yc_ : -yc_;
+    if (cot_ == 0.0) {
+      addWall(false, x, std::min(y_outer, y_corridor), std::max(y_outer, y_corridor), z0, z1, {});
+      return;
+    }
+    const Vector2d p(x, y_corridor), q(x + std::abs(y_outer - y_corridor) * cot_, y_outer);
+    const Vector2d u = (q - p).normalized(), n(-u.y(), u.x());
+    out_.mesh.addPrism({p - n * wt_ / 2, q - n * wt_ / 2, q + n * wt_ / 2, p + n * wt_ / 2}, z0, z1,
+                       Surface::kWall, surfaceReflectivity(Surface::kWall));
+  }
+
+  /// The south rooms the atrium replaces: `rooms` consecutive ones centred
+  /// as near as they can be to atrium.position.
+  void layoutAtrium() {
+    const AtriumSpec& a = b_.atrium;
+    if (a.rooms == 0) return;
+    const int n = static_cast<int>(south_rooms_.size());
+    if (a.rooms > n - 1)
+      throw Error(spec_.source + ": key 'building.atrium.rooms' (" + std::to_string(a.rooms) +
+                  ") must leave at least one of the " + std::to_string(n) + " south rooms");
+    const double centre = a.position * L_;
+    int first = 0;
+    double best = 1e300;
+    for (int i = 0; i + a.rooms <= n; ++i) {
+      const double mid = (south_rooms_[i].x0 + south_rooms_[i + a.rooms - 1].x1) / 2;
+      if (std::abs(mid - centre) < best) {
+        best = std::abs(mid - centre);
+        first = i;
+      }
+    }
+    for (int i = first; i < first + a.rooms; ++i) south_rooms_[i].atrium = true;
+    atrium_x0_ = south_rooms_[first].x0;
+    atrium_x1_ = south_rooms_[first + a.rooms - 1].x1;
+  }
+
+  bool hasAtrium() const { return b_.atrium.rooms > 0; }
 
   struct Room {
     double x0, x1;        ///< partition wall centrelines
     double door0, door1;  ///< door opening along x
     bool glass_front;
+    bool atrium = false;  ///< part of the atrium (south side only)
   };
 
   void splitRooms(double x0, double x1, std::vector<Room>& rooms) {
@@ -174,11 +243,20 @@ class Generator {
   void addSlab(int k) {
     const double top = z_[k], t = b_.slab_thickness;
     const Rect outer{-wt_ / 2, y_south_ - wt_ / 2, L_ + wt_ / 2, y_north_ + wt_ / 2};
-    std::vector<Rect> parts{outer};
+    std::vector<Rect> holes;
     if (hasStairs() && k > 0 && k < storeyCount()) {
       const double half = b_.stairwell.width / 2;
-      parts = rectMinus(
-          outer, {xs_ - half + wt_ / 2, y_flights_, xs_ + half - wt_ / 2, y_back_ - wt_ / 2});
+      holes.push_back({xs_ - half + wt_ / 2, y_flights_, xs_ + half - wt_ / 2, y_back_ - wt_ / 2});
+    }
+    if (hasAtrium() && k > 0 && k < storeyCount())
+      holes.push_back(
+          {atrium_x0_ + wt_ / 2, y_south_ + wt_ / 2, atrium_x1_ - wt_ / 2, -yc_ - wt_ / 2});
+    std::vector<Rect> parts{outer};
+    for (const Rect& hole : holes) {
+      std::vector<Rect> cut;
+      for (const Rect& part : parts)
+        for (const Rect& piece : rectMinus(part, hole)) cut.push_back(piece);
+      parts = std::move(cut);
     }
     for (const Rect& r : parts) {
       // Upper half reads as floor, lower half as ceiling.
@@ -197,16 +275,17 @@ class Generator {
     const double window_z0 = zf + b_.window_sill, window_z1 = window_z0 + b_.window_height;
 
     // Outer walls with windows at room centres; corridor ends glazed.
-    auto windows = [&](const std::vector<Room>& rooms) {
+    auto windows = [&](const std::vector<Room>& rooms, bool north) {
       std::vector<Opening> o;
+      const double y_outer = north ? y_north_ : -y_south_;
       for (const Room& r : rooms) {
-        const double m = (r.x0 + r.x1) / 2;
+        const double m = (boundaryAt(north, r.x0, y_outer) + boundaryAt(north, r.x1, y_outer)) / 2;
         o.push_back({m - b_.window_width / 2, m + b_.window_width / 2, window_z0, window_z1, true});
       }
       return o;
     };
-    addWall(true, y_south_, -wt_ / 2, L_ + wt_ / 2, z0, z1, windows(south_rooms_));
-    addWall(true, y_north_, -wt_ / 2, L_ + wt_ / 2, z0, z1, windows(north_rooms_));
+    addWall(true, y_south_, -wt_ / 2, L_ + wt_ / 2, z0, z1, windows(south_rooms_, false));
+    addWall(true, y_north_, -wt_ / 2, L_ + wt_ / 2, z0, z1, windows(north_rooms_, true));
     const double glass_top = std::min(zf + 2.5, ceiling - 0.15);
     const std::vector<Opening> corridor_end{{-yc_ + 0.35, yc_ - 0.35, zf + 0.05, glass_top, true}};
     addWall(false, 0.0, y_south_ + wt_ / 2, y_north_ - wt_ / 2, z0, z1, corridor_end);
@@ -216,6 +295,7 @@ class Generator {
     auto corridorOpenings = [&](const std::vector<Room>& rooms) {
       std::vector<Opening> o;
       for (const Room& r : rooms) {
+        if (r.atrium) continue;  // one opening over the whole atrium, below
         o.push_back({r.door0, r.door1, zf, zf + b_.door_height, false});
         if (r.glass_front) {
           const double g0 = r.x0 + wt_ / 2 + 0.2, g1 = r.x1 - wt_ / 2 - 0.2;
@@ -229,15 +309,30 @@ class Generator {
     std::vector<Opening> north = corridorOpenings(north_rooms_);
     if (hasStairs())
       north.push_back({xs_ - half + wt_ / 2, xs_ + half - wt_ / 2, zf, zf + 2.3, false});
-    addWall(true, -yc_, 0.0, L_, z0, z1, corridorOpenings(south_rooms_));
+    std::vector<Opening> south = corridorOpenings(south_rooms_);
+    if (hasAtrium()) {
+      // Open to the hall on the ground floor; above it a balustrade: a solid
+      // parapet (the wall below the opening) or a glass pane in the opening.
+      const AtriumSpec& a = b_.atrium;
+      const double ax0 = atrium_x0_ + wt_ / 2, ax1 = atrium_x1_ - wt_ / 2;
+      const bool parapet = k > 0 && !a.glass_balustrade;
+      south.push_back({ax0, ax1, parapet ? zf + a.balustrade_height : zf, z1, false});
+      if (k > 0 && a.glass_balustrade)
+        out_.mesh.addBox(Vector3d(ax0, -yc_ - kGlassThickness / 2, zf),
+                         Vector3d(ax1, -yc_ + kGlassThickness / 2, zf + a.balustrade_height),
+                         Surface::kGlass);
+    }
+    addWall(true, -yc_, 0.0, L_, z0, z1, south);
     addWall(true, yc_, 0.0, L_, z0, z1, north);
 
     // Partitions between rooms.
-    for (std::size_t i = 1; i < south_rooms_.size(); ++i)
-      addWall(false, south_rooms_[i].x0, y_south_, -yc_, z0, z1, {});
+    for (std::size_t i = 1; i < south_rooms_.size(); ++i) {
+      if (south_rooms_[i - 1].atrium && south_rooms_[i].atrium) continue;  // inside the atrium
+      addPartition(false, south_rooms_[i].x0, z0, z1);
+    }
     for (std::size_t i = 1; i < north_rooms_.size(); ++i) {
       if (hasStairs() && std::abs(north_rooms_[i].x0 - (xs_ + half)) < 1e-9) continue;
-      addWall(false, north_rooms_[i].x0, yc_, y_north_, z0, z1, {});
+      addPartition(true, north_rooms_[i].x0, z0, z1);
     }
 
     if (hasStairs()) {
@@ -266,6 +361,7 @@ class Generator {
     if (north && hasStairs() && x1 > xs_ - b_.stairwell.width / 2 - 0.2 &&
         x0 < xs_ + b_.stairwell.width / 2 + 0.2)
       return false;
+    if (!north && hasAtrium() && x1 > atrium_x0_ - 0.2 && x0 < atrium_x1_ + 0.2) return false;
     return true;
   }
 
@@ -329,10 +425,13 @@ class Generator {
   void addRoomFurniture(int k) {
     const double zf = z_[k];
     for (bool north : {false, true}) {
+      room_north_ = north;
       const double side = north ? 1.0 : -1.0;
       const double y_near = yc_ + wt_ / 2, y_far = (north ? y_north_ : -y_south_) - wt_ / 2;
       for (const Room& r : north ? north_rooms_ : south_rooms_) {
+        if (r.atrium && k > 0) continue;  // the void; the hall below keeps its furniture
         const double rx0 = r.x0 + wt_ / 2, rx1 = r.x1 - wt_ / 2;
+        room_ = &r;
         // Desk against the outer wall.
         const double dw = std::min(rng_.uniform(1.2, 1.8), rx1 - rx0 - 0.4);
         const double dx = rng_.uniform(rx0 + 0.1, rx1 - dw - 0.1);
@@ -347,16 +446,36 @@ class Generator {
         const double chx = rng_.uniform(rx0 + 0.8, std::max(rx0 + 0.85, rx1 - 0.8));
         box2(side, chx - 0.25, chx + 0.25, y_far - 1.4, y_far - 0.9, zf, zf + 0.9,
              rng_.uniform(20.0, 60.0));
-        const double bx = rng_.uniform(rx0 + 0.4, std::max(rx0 + 0.45, rx1 - 0.4));
-        out_.mesh.addCylinder(Vector2d(bx, side * (y_near + 0.45)), 0.16, zf, zf + 0.55, 12,
-                              Surface::kClutter, static_cast<float>(rng_.uniform(20.0, 90.0)));
+        const double by = y_near + 0.45;
+        const double bx =
+            rng_.uniform(rx0 + 0.4, std::max(rx0 + 0.45, rx1 - 0.4)) +
+            (boundaryAt(north, r.x0, by) - r.x0 + boundaryAt(north, r.x1, by) - r.x1) / 2;
+        out_.mesh.addCylinder(Vector2d(bx, side * by), 0.16, zf, zf + 0.55, 12, Surface::kClutter,
+                              static_cast<float>(rng_.uniform(20.0, 90.0)));
       }
     }
   }
 
   /// Box in room coordinates: y measured from the corridor axis on `side`.
+  /// With leaning partitions it moves along x with them (by their offset at
+  /// its middle) and is kept inside the room over its whole depth.
   void box2(double side, double x0, double x1, double y0, double y1, double z0, double z1,
             double reflectivity) {
+    if (cot_ != 0.0 && room_ != nullptr) {
+      const bool north = room_north_;
+      const double lo = std::min(y0, y1), hi = std::max(y0, y1);
+      const double shift = (boundaryAt(north, room_->x0, (lo + hi) / 2) - room_->x0 +
+                            boundaryAt(north, room_->x1, (lo + hi) / 2) - room_->x1) /
+                           2;
+      const double left =
+          std::max(boundaryAt(north, room_->x0, lo), boundaryAt(north, room_->x0, hi)) + wt_ / 2;
+      const double right =
+          std::min(boundaryAt(north, room_->x1, lo), boundaryAt(north, room_->x1, hi)) - wt_ / 2;
+      const double width = x1 - x0;
+      x0 = std::clamp(x0 + shift, left, right - width);
+      x1 = x0 + width;
+      if (x0 < left - 1e-9) return;  // no room for it at this depth
+    }
     const double ya = side * y0, yb = side * y1;
     out_.mesh.addBox(Vector3d(x0, std::min(ya, yb), z0), Vector3d(x1, std::max(ya, yb), z1),
                      Surface::kClutter, static_cast<float>(reflectivity));
@@ -485,6 +604,10 @@ class Generator {
   double L_ = 0, yc_ = 0, wt_ = 0;
   double xs_ = 0, y_flights_ = 0, y_back_ = 0, y_north_ = 0, y_south_ = 0;
   double x_east_lane_ = 0, x_west_lane_ = 0, x_turn_west_ = 0, x_turn_east_ = 0, x_start_ = 0;
+  double atrium_x0_ = 0, atrium_x1_ = 0;  ///< partition centrelines at the atrium's ends
+  double cot_ = 0.0;            ///< cot(partition angle): x offset per metre away from the corridor
+  const Room* room_ = nullptr;  ///< the room box2() furnishes
+  bool room_north_ = false;
 };
 
 }  // namespace
@@ -496,6 +619,12 @@ void Building::translate(const Eigen::Vector3d& offset) {
     s.ceiling_z += offset.z();
   }
   for (RouteVertex& v : route) v.p += offset;
+}
+
+void Building::rotateZ(double yaw) {
+  mesh.rotateZ(yaw);
+  const Eigen::Matrix3d R = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  for (RouteVertex& v : route) v.p = R * v.p;
 }
 
 Building generateBuilding(const BuildingSpec& spec) {

@@ -31,6 +31,8 @@ struct Building {
 
   /// Moves everything (mesh, storeys, route) by `offset`.
   void translate(const Eigen::Vector3d& offset);
+  /// Turns everything (mesh, route) about the world z axis by `yaw` [rad].
+  void rotateZ(double yaw);
 };
 
 /// Generates the building and the route. Deterministic in spec (and spec.seed).

@@ -1,6 +1,9 @@
 #include "sim/building_spec.h"
 
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <sstream>
 
@@ -8,6 +11,7 @@
 #include "common/yaml_section.h"
 #include "sim/embedded_presets.h"
 #include "sim/lidar_model.h"
+#include "sim/random_spec.h"
 
 namespace storey::sim {
 namespace {
@@ -122,7 +126,14 @@ void visitLayout(V& v, BuildingLayoutSpec& b) {
   v.field("glass_front_fraction", b.glass_front_fraction);
   v.field("clutter_density", b.clutter_density);
   v.field("pillar_spacing", b.pillar_spacing);
+  v.degrees("partition_angle_deg", b.partition_angle);
   v.section("stairwell", [&](auto& w) { visitStairwell(w, b.stairwell); });
+  v.section("atrium", [&](auto& a) {
+    a.field("rooms", b.atrium.rooms);
+    a.field("position", b.atrium.position);
+    a.field("glass_balustrade", b.atrium.glass_balustrade);
+    a.field("balustrade_height", b.atrium.balustrade_height);
+  });
 }
 
 template <typename V>
@@ -250,16 +261,32 @@ struct SpecReader {
   }
 };
 
+/// The shortest decimal text that reads back as exactly `v` (0.341, not 0.34100000000000003).
+std::string shortest(double v) {
+  char text[40];
+  for (int digits = 1; digits <= 17; ++digits) {
+    std::snprintf(text, sizeof(text), "%.*g", digits, v);
+    if (std::strtod(text, nullptr) != v) continue;
+    // Whole and large numbers without an exponent (10, not 1e+01).
+    if (std::abs(v) >= 1.0 && std::abs(v) < 1e16 && std::strchr(text, 'e') != nullptr) {
+      const int integer_digits = static_cast<int>(std::floor(std::log10(std::abs(v)))) + 1;
+      std::snprintf(text, sizeof(text), "%.*f", std::max(0, digits - integer_digits), v);
+    }
+    break;
+  }
+  return text;
+}
+
 struct SpecWriter {
   YAML::Emitter& out;
   template <typename T>
   void field(const char* key, const T& value) {
     out << YAML::Key << key << YAML::Value << value;
   }
-  void field(const char* key, const Eigen::Vector3d& v) {
-    out << YAML::Key << key << YAML::Value << YAML::Flow << YAML::BeginSeq << v.x() << v.y()
-        << v.z() << YAML::EndSeq;
+  void field(const char* key, double value) {
+    out << YAML::Key << key << YAML::Value << shortest(value);
   }
+  void field(const char* key, const Eigen::Vector3d& v) { list(key, {v.x(), v.y(), v.z()}); }
   void degrees(const char* key, double radians) { field(key, radians / kDegToRad); }
   void degrees(const char* key, const Eigen::Vector3d& radians) {
     field(key, Eigen::Vector3d(radians / kDegToRad));
@@ -276,12 +303,12 @@ struct SpecWriter {
     const Eigen::Quaterniond& q = pose.rotation();
     out << YAML::Key << key << YAML::Value << YAML::BeginMap;
     field("translation", pose.translation());
-    out << YAML::Key << "rotation_xyzw" << YAML::Value << YAML::Flow << YAML::BeginSeq << q.x()
-        << q.y() << q.z() << q.w() << YAML::EndSeq << YAML::EndMap;
+    list("rotation_xyzw", {q.x(), q.y(), q.z(), q.w()});
+    out << YAML::EndMap;
   }
   void list(const char* key, const std::vector<double>& values) {
     out << YAML::Key << key << YAML::Value << YAML::Flow << YAML::BeginSeq;
-    for (double v : values) out << v;
+    for (double v : values) out << shortest(v);
     out << YAML::EndSeq;
   }
   template <typename F>
@@ -350,6 +377,15 @@ void BuildingSpec::validate() const {
         "building.stairwell.half_landing_depth", "must be in [1, 4] m");
   check(s.position > 0.0 && s.position < 1.0, *this, "building.stairwell.position",
         "must be in (0, 1)");
+  check(
+      b.partition_angle >= 60.0 * kDegToRad - 1e-9 && b.partition_angle <= 90.0 * kDegToRad + 1e-9,
+      *this, "building.partition_angle_deg", "must be in [60, 90] deg");
+  check(b.atrium.rooms >= 0 && b.atrium.rooms <= 20, *this, "building.atrium.rooms",
+        "must be in [0, 20]");
+  check(b.atrium.position > 0.0 && b.atrium.position < 1.0, *this, "building.atrium.position",
+        "must be in (0, 1)");
+  check(b.atrium.balustrade_height >= 0.8 && b.atrium.balustrade_height <= 1.5, *this,
+        "building.atrium.balustrade_height", "must be in [0.8, 1.5] m");
   check(robot.walk_speed > 0.05 && robot.walk_speed <= 2.0, *this, "robot.walk_speed",
         "must be in (0.05, 2] m/s");
   check(robot.stair_speed > 0.05 && robot.stair_speed <= 1.0, *this, "robot.stair_speed",
@@ -427,7 +463,6 @@ void BuildingSpec::validate() const {
 std::string buildingSpecYaml(const BuildingSpec& spec) {
   BuildingSpec copy = spec;
   YAML::Emitter out;
-  out.SetDoublePrecision(17);
   out << YAML::Comment("Storey building spec, format version 1 (see docs/simulator.md)");
   out << YAML::BeginMap;
   out << YAML::Key << "format_version" << YAML::Value << 1;
@@ -479,6 +514,10 @@ BuildingSpec parseBuildingSpec(const std::string& yaml_text, const std::string& 
 }
 
 BuildingSpec loadBuildingSpec(const std::string& preset_or_path) {
+  if (const std::optional<std::uint64_t> seed = randomSeedOf(preset_or_path)) {
+    // Through the YAML text, so spec.yaml (that text) gives exactly this spec.
+    return parseBuildingSpec(buildingSpecYaml(drawRandomSpec(*seed)), preset_or_path);
+  }
   for (const std::string& name : presetNames()) {
     if (name == preset_or_path) return parseBuildingSpec(presetText(name), "preset '" + name + "'");
   }

@@ -4,6 +4,7 @@
 /// seconds, radians inside; the YAML gives angles in degrees. Every field has
 /// a default; docs/simulator.md lists the YAML keys.
 #include <Eigen/Core>
+#include <cmath>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -24,6 +25,17 @@ struct StairwellSpec {
   double position = 0.8;  ///< centre along the corridor, as a fraction of its length [0, 1]
 };
 
+/// An atrium: a void through every storey above the ground floor in place of
+/// some of the south rooms, open to the corridor behind a balustrade, so the
+/// floors of other storeys are seen across it. The ground floor under it is
+/// an open hall.
+struct AtriumSpec {
+  int rooms = 0;                   ///< south rooms it replaces; 0 = no atrium
+  double position = 0.5;           ///< its centre along the corridor, as a fraction [0, 1]
+  bool glass_balustrade = true;    ///< glass (LiDAR sees through) or a solid parapet
+  double balustrade_height = 1.1;  ///< [m]
+};
+
 struct BuildingLayoutSpec {
   std::vector<double> storey_heights{3.2};  ///< floor-to-floor height of each storey, bottom up [m]
   double slab_thickness = 0.25;             ///< floor/ceiling slab [m]
@@ -42,7 +54,12 @@ struct BuildingLayoutSpec {
       0.2;                        ///< fraction of rooms with a glass wall to the corridor [0, 1]
   double clutter_density = 0.35;  ///< objects per metre of corridor wall, per side [1/m]
   double pillar_spacing = 6.0;    ///< pillars along the corridor walls; 0 = none [m]
+  /// Angle between the room partitions and the corridor walls [rad] (YAML:
+  /// degrees, 60-90): below 90 deg the partitions lean towards +x, so rooms
+  /// are parallelograms and walls meet at that angle.
+  double partition_angle = M_PI / 2;
   StairwellSpec stairwell;
+  AtriumSpec atrium;
 };
 
 /// How the sensors are carried: the kind of walk, and the defaults of RobotSpec.

@@ -1,6 +1,7 @@
 #include "sim/mesh.h"
 
 #include <Eigen/Geometry>
+
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -85,6 +86,24 @@ void TriangleMesh::addBox(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, 
   }
 }
 
+void TriangleMesh::addPrism(const std::array<Eigen::Vector2d, 4>& footprint, double z0, double z1,
+                            Surface surface, float reflectivity) {
+  if (z1 - z0 < 1e-6) return;
+  const std::uint32_t base = static_cast<std::uint32_t>(vertices_.size());
+  for (double z : {z0, z1})
+    for (const Eigen::Vector2d& p : footprint) vertices_.emplace_back(p.x(), p.y(), z);
+  auto quad = [&](std::uint32_t a, std::uint32_t b, std::uint32_t c, std::uint32_t d) {
+    triangles_.push_back({{base + a, base + b, base + c}, surface, reflectivity});
+    triangles_.push_back({{base + a, base + c, base + d}, surface, reflectivity});
+  };
+  quad(0, 3, 2, 1);  // bottom, seen from below
+  quad(4, 5, 6, 7);  // top
+  for (std::uint32_t i = 0; i < 4; ++i) {
+    const std::uint32_t j = (i + 1) % 4;
+    quad(i, j, 4 + j, 4 + i);
+  }
+}
+
 void TriangleMesh::addCylinder(const Eigen::Vector2d& centre, double radius, double z0, double z1,
                                int sides, Surface surface, float reflectivity) {
   const std::uint32_t base = static_cast<std::uint32_t>(vertices_.size());
@@ -111,8 +130,8 @@ void TriangleMesh::translate(const Eigen::Vector3d& offset) {
   for (Eigen::Vector3d& v : vertices_) v += offset;
 }
 
-void TriangleMesh::rotateAboutZ(double angle) {
-  const Eigen::Matrix3d R = Eigen::AngleAxisd(angle, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+void TriangleMesh::rotateZ(double yaw) {
+  const Eigen::Matrix3d R = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix();
   for (Eigen::Vector3d& v : vertices_) v = R * v;
 }
 

@@ -2,6 +2,7 @@
 /// Triangle mesh of the simulated building, with a surface class per
 /// triangle (what the LiDAR sees: reflectivity, and whether it returns at all).
 #include <Eigen/Core>
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -49,9 +50,13 @@ class TriangleMesh {
   /// A planar quad a-b-c-d (two triangles).
   void addQuad(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
                const Eigen::Vector3d& d, Surface surface, float reflectivity);
+  /// Vertical prism over a convex quadrilateral (corners counter-clockwise
+  /// seen from above) from z0 to z1: 12 triangles, outward normals.
+  void addPrism(const std::array<Eigen::Vector2d, 4>& footprint, double z0, double z1,
+                Surface surface, float reflectivity);
   void translate(const Eigen::Vector3d& offset);
-  /// Rotates every vertex about the z axis through the origin by `angle` [rad].
-  void rotateAboutZ(double angle);
+  /// Turns every vertex about the world z axis through the origin by `yaw` [rad].
+  void rotateZ(double yaw);
 
   /// Unsigned distance from x to the nearest triangle of a returning surface
   /// (brute force; for tests and checks, not per point in production).

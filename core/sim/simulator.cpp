@@ -173,6 +173,7 @@ SimulationResult simulate(const BuildingSpec& spec, const SimulationOptions& opt
   world.building.mesh.writePly(staging.file(kMeshFile));
   writeStoreys(staging.file(kStoreysFile), spec, world.building);
   writeCalibration(staging.file(kCalibrationFile), spec);
+  writeFileAtomically(staging.file(kSpecFile), buildingSpecYaml(spec));
 
   report(progress, 0.0, "IMU");
   const ImuSimulation imu =

@@ -25,6 +25,8 @@ inline constexpr const char* kImuTruthFile = "groundtruth_imu.tum";
 inline constexpr const char* kMeshFile = "building.ply";
 inline constexpr const char* kStoreysFile = "storeys.yaml";
 inline constexpr const char* kCalibrationFile = "calibration.yaml";
+/// The spec simulated (every key): `storey simulate spec.yaml` reproduces the folder.
+inline constexpr const char* kSpecFile = "spec.yaml";
 
 /// Which logs to write (at least one).
 struct SimulationFormats {

@@ -1,9 +1,7 @@
 #pragma once
 /// The simulated world: the building and the robot's trajectory, both in the
-/// output world frame (z up, x = the LiDAR's initial heading (the IMU's when
-/// the LiDAR looks straight up or down), origin at the LiDAR's start
-/// position): the world frame of Storey's odometry. With the default mount
-/// x is the robot's initial heading.
+/// output world frame (z up, x = the LiDAR's initial heading projected on the
+/// level plane, origin at the LiDAR's start position; Storey's world frame).
 #include "sim/building.h"
 #include "sim/building_spec.h"
 #include "sim/trajectory.h"

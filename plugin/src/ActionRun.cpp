@@ -16,6 +16,7 @@
 #include "ActionCommon.h"
 #include "RunDialog.h"
 #include "common/error.h"
+#include "common/progress.h"
 
 namespace storey::plugin {
 
@@ -24,9 +25,8 @@ struct RunJob {
   RunRequest request;
   Config config;
   std::atomic<bool> cancel{false};
-  std::mutex mutex;  ///< guards fraction and stage
-  double fraction = 0.0;
-  std::string stage = "starting";
+  std::mutex mutex;     ///< guards meter
+  ProgressMeter meter;  ///< stage, fraction, elapsed, time left, speed
   // Set by the worker before it returns.
   bool ok = false;
   bool cancelled = false;
@@ -86,14 +86,18 @@ void ActionRun::start(ccMainAppInterface* app, const RunRequest& request, const 
   connect(watcher_, &QFutureWatcher<void>::finished, this, &ActionRun::finishRun);
   watcher_->setFuture(QtConcurrent::run([job] {
     try {
-      job->outcome =
-          runStorey(job->request, job->config, [job](double fraction, const std::string& stage) {
+      job->outcome = runStorey(
+          job->request, job->config,
+          [job](double fraction, const std::string& stage) {
             {
               std::lock_guard<std::mutex> lock(job->mutex);
-              job->fraction = fraction;
-              job->stage = stage;
+              job->meter.update(fraction, stage);
             }
             return !job->cancel.load();
+          },
+          [job](double log_seconds) {
+            std::lock_guard<std::mutex> lock(job->mutex);
+            job->meter.setLogTime(log_seconds);
           });
       job->ok = true;
     } catch (const Cancelled&) {
@@ -106,16 +110,18 @@ void ActionRun::start(ccMainAppInterface* app, const RunRequest& request, const 
 
 void ActionRun::pollProgress() {
   if (!job_ || progress_ == nullptr || job_->cancel) return;
-  double fraction;
-  std::string stage;
+  ProgressReading r;
   {
     std::lock_guard<std::mutex> lock(job_->mutex);
-    fraction = job_->fraction;
-    stage = job_->stage;
+    r = job_->meter.reading();
   }
-  progress_->setLabelText(QString("Storey SLAM: %1").arg(QString::fromStdString(stage)));
-  progress_->setValue(static_cast<int>(fraction * 1000.0));
-  emit progressed(fraction);
+  if (r.stage.empty()) return;  // nothing reported yet: "starting…" stays
+  progress_->setLabelText(QString("Storey SLAM: %1, %2 %\n%3")
+                              .arg(QString::fromStdString(r.stage))
+                              .arg(static_cast<int>(r.fraction * 100.0))
+                              .arg(QString::fromStdString(timingText(r))));
+  progress_->setValue(static_cast<int>(r.fraction * 1000.0));
+  emit progressed(r.fraction);
 }
 
 void ActionRun::reportError(const QString& message) {
@@ -161,12 +167,14 @@ void ActionRun::finishRun() {
   }
   const RunEntities& entities = completion.entities;
   app_->addToDB(entities.group, true);
-  const RunOutcome& o = job->outcome;
-  app_->dispToConsole(
-      runSummary(o, entities.planes ? QString("%1 SRPs").arg(entities.planes->getChildrenNumber())
-                                    : QString("no SRPs")));
-  for (const QString& line : reportText(o).split('\n', Qt::SkipEmptyParts))
-    app_->dispToConsole("[Storey] " + line);
+  const std::string srps = entities.planes
+                               ? std::to_string(entities.planes->getChildrenNumber()) + " SRPs"
+                               : std::string("no SRPs");
+  completion.console = runConsoleLines(job->outcome, "results in the DB tree, " + srps);
+  for (const ConsoleLine& line : completion.console)
+    app_->dispToConsole(QString::fromStdString(line.text),
+                        line.warning ? ccMainAppInterface::WRN_CONSOLE_MESSAGE
+                                     : ccMainAppInterface::STD_CONSOLE_MESSAGE);
   app_->forceConsoleDisplay();
   app_->setView(CC_ISO_VIEW_1);
   app_->setGlobalZoom();

@@ -1,13 +1,15 @@
 #pragma once
 /// "Run Storey SLAM on a log…": the log's file dialog, the parameters dialog
 /// (RunDialog), the pipeline on a worker thread behind a progress dialog with
-/// Cancel, then the results into the DB tree (toRunEntities) and the run's
-/// summary and report into the console. Reports how each run ended through
+/// Cancel (stage, percent, elapsed, time left, speed), then the results into
+/// the DB tree (toRunEntities) and the run's summary and warnings into the
+/// console. Reports how each run ended through
 /// finished().
 #include <QFutureWatcher>
 #include <QObject>
 #include <QString>
 #include <memory>
+#include <vector>
 
 #include "Entities.h"
 #include "StoreyRun.h"
@@ -26,6 +28,7 @@ struct RunCompletion {
   QString error;                              ///< kFailed: what went wrong
   RunEntities entities;                       ///< kDone: what was added to the DB tree
   std::shared_ptr<const RunOutcome> outcome;  ///< kDone: the pipeline's result
+  std::vector<ConsoleLine> console;           ///< kDone: the lines shown in the console
 };
 
 struct RunJob;

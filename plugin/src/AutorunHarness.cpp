@@ -60,7 +60,7 @@ bool AutorunHarness::requested() {
 AutorunHarness::AutorunHarness(ccMainAppInterface* app, ActionRun* run, QObject* parent)
     : QObject(parent), app_(app), run_(run), settings_(settingsFromEnvironment()) {
   run_->setUnattended(true);
-  connect(run_, &ActionRun::progressed, this, &AutorunHarness::pressCancel);
+  connect(run_, &ActionRun::progressed, this, &AutorunHarness::runProgressed);
   connect(run_, &ActionRun::finished, this, &AutorunHarness::runFinished);
   QTimer::singleShot(1500, this, &AutorunHarness::begin);
 }
@@ -95,11 +95,16 @@ void AutorunHarness::begin() {
   run_->start(app_, dialog.request(), config);
 }
 
-void AutorunHarness::pressCancel(double fraction) {
-  // The progress dialog's own Cancel button, part way through the log.
-  if (!settings_.cancel || cancel_pressed_ || fraction <= 0.2) return;
+void AutorunHarness::runProgressed(double fraction) {
   QProgressDialog* progress = run_->progressDialog();
   if (progress == nullptr) return;
+  // The dialog's text for the summary: the last one with a time-left
+  // estimate, else the last one.
+  const QString label = progress->labelText();
+  if (!label.contains("? left") || progress_label_.isEmpty() || progress_label_.contains("? left"))
+    progress_label_ = label;
+  // The progress dialog's own Cancel button, part way through the log.
+  if (!settings_.cancel || cancel_pressed_ || fraction <= 0.2) return;
   if (auto* button = progress->findChild<QPushButton*>()) {
     cancel_pressed_ = true;
     button->click();
@@ -120,6 +125,12 @@ void AutorunHarness::runFinished(const RunCompletion& completion) {
     out << "storey " << c->getName() << ' ' << c->size() << '\n';
   out << "trajectory " << completion.outcome->result.trajectory.size() << '\n';
   out << "planes " << (entities.planes ? entities.planes->getChildrenNumber() : 0) << '\n';
+  // What the console and the progress dialog showed.
+  for (const ConsoleLine& line : completion.console)
+    out << (line.warning ? "console_warning " : "console ") << QString::fromStdString(line.text)
+        << '\n';
+  if (!progress_label_.isEmpty())
+    out << "progress " << QString(progress_label_).replace('\n', " | ") << '\n';
   // Optional steps: the inspect and export actions' functions.
   int exit_code = 0;
   try {

@@ -1,7 +1,8 @@
 #pragma once
 /// The GUI test hook (docs/plugin.md "Test hook"): with STOREY_PLUGIN_AUTORUN
 /// set, runs the run action on a log without dialogs, then optionally the
-/// inspect and export steps, and writes a summary, a screenshot and quits.
+/// inspect and export steps, and writes a summary (with the console's lines
+/// and the progress dialog's text), a screenshot and quits.
 /// Every STOREY_PLUGIN_* environment variable is read in AutorunHarness.cpp
 /// and nowhere else; nothing happens when they are unset.
 #include <QObject>
@@ -39,7 +40,7 @@ class AutorunHarness : public QObject {
 
  private:
   void begin();
-  void pressCancel(double fraction);
+  void runProgressed(double fraction);
   void runFinished(const RunCompletion& completion);
   void finish(const QString& summary, int exit_code);
 
@@ -47,6 +48,7 @@ class AutorunHarness : public QObject {
   ActionRun* run_;
   Settings settings_;
   bool cancel_pressed_ = false;
+  QString progress_label_;  ///< the progress dialog's last text (with an estimate, if any)
 };
 
 }  // namespace storey::plugin

@@ -7,13 +7,11 @@
 #include <ccScalarField.h>
 
 #include <QColor>
-#include <QFile>
 #include <QFileInfo>
 #include <QStringList>
 #include <QTextStream>
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
 #include <limits>
 
 #include "common/error.h"
@@ -256,26 +254,6 @@ ccPointCloud* findStoreyCloud(ccHObject* entity) {
   for (ccHObject* c : clouds)
     if (c->getMetaData(kMetaRole).toString() == "map") return static_cast<ccPointCloud*>(c);
   return nullptr;
-}
-
-QString reportText(const RunOutcome& outcome) {
-  QFile md(QString::fromStdString((std::filesystem::path(outcome.out_dir) / "report.md").string()));
-  if (md.open(QIODevice::ReadOnly | QIODevice::Text)) return QString::fromUtf8(md.readAll());
-  return QString::fromStdString(outcome.result.report_json);
-}
-
-QString runSummary(const RunOutcome& outcome, const QString& extra) {
-  const PipelineResult& r = outcome.result;
-  return QString(
-             "[Storey] done in %1 s: %2 scans, %3 keyframes, %4 map points, %5 storeys%6; "
-             "files in %7")
-      .arg(outcome.seconds, 0, 'f', 1)
-      .arg(r.trajectory.size())
-      .arg(r.keyframes.size())
-      .arg(r.map ? r.map->size() : 0)
-      .arg(r.storeys.size())
-      .arg(extra.isEmpty() ? QString() : QString(", " + extra))
-      .arg(QString::fromStdString(outcome.out_dir));
 }
 
 }  // namespace storey::plugin

@@ -65,10 +65,4 @@ ccPointCloud* findStoreyCloud(ccHObject* entity);
 QString trajectoryToText(const Trajectory& trajectory);
 Trajectory trajectoryFromText(const QString& text);
 
-/// The run report for the console: OUT/report.md when it exists, else the JSON.
-QString reportText(const RunOutcome& outcome);
-/// The console's one-line summary of a run: "[Storey] done in S s: N scans,
-/// K keyframes, M map points, F storeys[, EXTRA]; files in OUT".
-QString runSummary(const RunOutcome& outcome, const QString& extra = QString());
-
 }  // namespace storey::plugin

@@ -6,6 +6,7 @@
 #include "Entities.h"
 #include "StoreyRun.h"
 #include "common/error.h"
+#include "common/progress.h"
 #include "export/storey_files.h"
 
 namespace storey::plugin {
@@ -58,21 +59,33 @@ bool StoreyCommand::process(ccCommandLineInterface& cmd) {
                        QString::fromStdString(resolveOutDir(request))));
     std::string last_stage;
     int last_percent = -10;
-    outcome = runStorey(request, config, [&](double fraction, const std::string& stage) {
-      const int percent = static_cast<int>(std::floor(fraction * 100.0));
-      if (stage != last_stage || percent >= last_percent + 10) {
-        cmd.print(QString("[Storey] %1 %2%").arg(QString::fromStdString(stage)).arg(percent));
-        last_stage = stage;
-        last_percent = percent;
-      }
-      return true;
-    });
+    ProgressMeter meter;
+    outcome = runStorey(
+        request, config,
+        [&](double fraction, const std::string& stage) {
+          meter.update(fraction, stage);
+          const int percent = static_cast<int>(std::floor(fraction * 100.0));
+          if (stage != last_stage || percent >= last_percent + 10) {
+            cmd.print(QString("[Storey] %1 %2% (%3)")
+                          .arg(QString::fromStdString(stage))
+                          .arg(percent)
+                          .arg(QString::fromStdString(timingText(meter.reading()))));
+            last_stage = stage;
+            last_percent = percent;
+          }
+          return true;
+        },
+        [&](double log_seconds) { meter.setLogTime(log_seconds); });
   } catch (const std::exception& e) {
     return cmd.error(QString("[Storey] %1").arg(QString::fromStdString(e.what())));
   }
 
-  cmd.print(runSummary(outcome));
-  for (const QString& line : reportText(outcome).split('\n', Qt::SkipEmptyParts)) cmd.print(line);
+  for (const ConsoleLine& line : runConsoleLines(outcome)) {
+    if (line.warning)
+      cmd.warning(QString::fromStdString(line.text));
+    else
+      cmd.print(QString::fromStdString(line.text));
+  }
 
   if (!outcome.result.map) {
     cmd.warning("[Storey] the map is off (map.enabled: false): no cloud to hand over");

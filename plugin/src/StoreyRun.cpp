@@ -1,10 +1,12 @@
 #include "StoreyRun.h"
 
 #include <chrono>
+#include <cstdio>
 #include <filesystem>
 
 #include "common/error.h"
 #include "config/config.h"
+#include "pipeline/run_summary.h"
 
 namespace storey::plugin {
 
@@ -31,7 +33,8 @@ Config loadRequestConfig(const RunRequest& request) {
   return loadRunConfig(request.config_path, resolveCalibration(request));
 }
 
-RunOutcome runStorey(const RunRequest& request, const Config& config, const ProgressFn& progress) {
+RunOutcome runStorey(const RunRequest& request, const Config& config, const ProgressFn& progress,
+                     const LogTimeFn& log_time) {
   if (request.log_path.empty()) throw Error("no log given");
   std::error_code ec;
   if (!fs::exists(request.log_path, ec)) throw Error(request.log_path + ": no such file or folder");
@@ -40,9 +43,21 @@ RunOutcome runStorey(const RunRequest& request, const Config& config, const Prog
   outcome.out_dir = resolveOutDir(request);
   outcome.calibration_path = resolveCalibration(request);
   const auto start = std::chrono::steady_clock::now();
-  outcome.result = runPipeline(request.log_path, config, outcome.out_dir, progress);
+  outcome.result = runPipeline(request.log_path, config, outcome.out_dir, progress, log_time);
   outcome.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return outcome;
+}
+
+std::vector<ConsoleLine> runConsoleLines(const RunOutcome& outcome, const std::string& extra) {
+  char headline[96];
+  std::snprintf(headline, sizeof(headline), "[Storey] done in %.1f s", outcome.seconds);
+  std::vector<ConsoleLine> lines{{headline + (extra.empty() ? "" : ": " + extra)}};
+  const RunSummary summary = summariseRun(outcome.result.report_json, outcome.out_dir);
+  for (const RunSummary::Line& line : summary.lines)
+    lines.push_back({"[Storey]   " + line.label + ": " + line.value});
+  for (const std::string& warning : summary.warnings)
+    lines.push_back({"[Storey] warning: " + warning, true});
+  return lines;
 }
 
 }  // namespace storey::plugin

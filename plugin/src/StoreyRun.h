@@ -5,6 +5,7 @@
 /// no CloudCompare here: the GUI action and the command-line command both call
 /// these functions.
 #include <string>
+#include <vector>
 
 #include "common/progress.h"
 #include "config/config.h"
@@ -42,6 +43,19 @@ struct RunOutcome {
 
 /// Checks the log exists, then runs the pipeline (core/pipeline) with
 /// `config`. Throws storey::Error (bad input) or storey::Cancelled.
-RunOutcome runStorey(const RunRequest& request, const Config& config, const ProgressFn& progress);
+RunOutcome runStorey(const RunRequest& request, const Config& config, const ProgressFn& progress,
+                     const LogTimeFn& log_time = nullptr);
+
+/// A line for CloudCompare's console; both faces print them (the GUI action
+/// with dispToConsole, -STOREY_SLAM with print and warning).
+struct ConsoleLine {
+  std::string text;
+  bool warning = false;  ///< shown as a CloudCompare warning
+};
+
+/// The console after a run: "[Storey] done in S s[: EXTRA]", the run summary
+/// (core/pipeline/run_summary.h, what `storey run` prints) as "[Storey]   label:
+/// value" lines, then each warning of the run as a warning line.
+std::vector<ConsoleLine> runConsoleLines(const RunOutcome& outcome, const std::string& extra = "");
 
 }  // namespace storey::plugin

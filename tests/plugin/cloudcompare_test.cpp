@@ -31,7 +31,9 @@ struct Result {
   std::string output;  ///< stdout and stderr
 };
 
-std::string quoted(const std::string& s) { return "'" + s + "'"; }
+std::string quoted(const std::string& s) {
+  return "'" + s + "'";
+}
 
 Result shell(const std::string& command) {
   Result r;
@@ -39,7 +41,8 @@ Result shell(const std::string& command) {
   if (pipe == nullptr) return r;
   std::array<char, 4096> buffer;
   std::size_t n;
-  while ((n = std::fread(buffer.data(), 1, buffer.size(), pipe)) > 0) r.output.append(buffer.data(), n);
+  while ((n = std::fread(buffer.data(), 1, buffer.size(), pipe)) > 0)
+    r.output.append(buffer.data(), n);
   const int status = ::pclose(pipe);
   r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   return r;
@@ -129,16 +132,16 @@ TEST(PluginCommandLine, MapsTheTinyLogAndHandsTheCloudsToCloudCompare) {
   CloudCompareHome home;
   const std::string out = home.file("out");
   const Result r = home.run("-AUTO_SAVE OFF -NO_TIMESTAMP -STOREY_SLAM " + quoted(kLog) +
-                            " -STOREY_CONFIG " + quoted(smallFloorConfig(home)) +
-                            " -STOREY_OUT " + quoted(out) +
-                            " -C_EXPORT_FMT PLY -PLY_EXPORT_FMT ASCII -SAVE_CLOUDS");
+                            " -STOREY_CONFIG " + quoted(smallFloorConfig(home)) + " -STOREY_OUT " +
+                            quoted(out) + " -C_EXPORT_FMT PLY -PLY_EXPORT_FMT ASCII -SAVE_CLOUDS");
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("[Storey] done in"), std::string::npos) << r.output;
 
   // The core's own outputs of the same run are there too.
   ASSERT_TRUE(fs::exists(out + "/map.ply")) << r.output;
   const Ply core_map = readPly(out + "/map.ply", false);
-  ASSERT_GT(core_map.declared, 10000u) << "a tiny corridor loop maps to tens of thousands of voxels";
+  ASSERT_GT(core_map.declared, 10000u)
+      << "a tiny corridor loop maps to tens of thousands of voxels";
 
   // The map as CloudCompare saved it: same points as the core's map.ply,
   // with the plugin's scalar fields.
@@ -148,7 +151,8 @@ TEST(PluginCommandLine, MapsTheTinyLogAndHandsTheCloudsToCloudCompare) {
   EXPECT_EQ(map.declared, core_map.declared);
   ASSERT_EQ(map.rows.size(), map.declared);
   for (const char* field : {"intensity", "storey", "time", "keyframe", "flags"})
-    EXPECT_GE(map.column(std::string("scalar_") + field), 0) << field << " missing from " << map_path;
+    EXPECT_GE(map.column(std::string("scalar_") + field), 0)
+        << field << " missing from " << map_path;
   const int time = map.column("scalar_time");
   const int storey = map.column("scalar_storey");
   ASSERT_GE(time, 0);
@@ -216,7 +220,8 @@ TEST(PluginCommandLine, BadConfigKeyIsNamed) {
 Result runGui(const CloudCompareHome& home, const std::string& hook) {
   const std::string dir = quoted(home.file(""));
   return shell(
-      "cd " + dir + " && { Xvfb -displayfd 3 -screen 0 1600x1000x24 -nolisten tcp 3>display "
+      "cd " + dir +
+      " && { Xvfb -displayfd 3 -screen 0 1600x1000x24 -nolisten tcp 3>display "
       ">xvfb.log 2>&1 & x=$!; i=0; while [ ! -s display ] && [ $i -lt 200 ]; do sleep 0.1; "
       "i=$((i+1)); done; DISPLAY=:$(cat display) " +
       home.env("-u QT_QPA_PLATFORM") + " STOREY_PLUGIN_AUTORUN=" + quoted(kLog) +
@@ -232,10 +237,11 @@ TEST(PluginGui, RunActionUnderXvfbPutsTheRunInTheDbTree) {
   CloudCompareHome home;
   const std::string done = home.file("done.txt");
   fs::remove(STOREY_SCREENSHOT);
-  const Result r = runGui(home, "STOREY_PLUGIN_AUTORUN_INSPECT=1 STOREY_PLUGIN_AUTORUN_KEYFRAME=0 "
-                                "STOREY_PLUGIN_AUTORUN_EXPORT=" +
-                                    quoted(home.file("export")) +
-                                    " STOREY_PLUGIN_SCREENSHOT=" + quoted(STOREY_SCREENSHOT));
+  const Result r = runGui(home,
+                          "STOREY_PLUGIN_AUTORUN_INSPECT=1 STOREY_PLUGIN_AUTORUN_KEYFRAME=0 "
+                          "STOREY_PLUGIN_AUTORUN_EXPORT=" +
+                              quoted(home.file("export")) +
+                              " STOREY_PLUGIN_SCREENSHOT=" + quoted(STOREY_SCREENSHOT));
   ASSERT_TRUE(fs::exists(done)) << "exit " << r.exit_code << "\n" << r.output;
   std::ifstream in(done);
   std::map<std::string, std::vector<std::string>> lines;
@@ -267,6 +273,31 @@ TEST(PluginGui, RunActionUnderXvfbPutsTheRunInTheDbTree) {
   EXPECT_LT(visible, planes) << "a keyframe does not see every SRP of the run";
   EXPECT_TRUE(fs::exists(home.file("export/storey_00.las")));
   EXPECT_TRUE(fs::exists(home.file("export/storey_00.ply")));
+  // The console: the run summary as readable lines (no markdown table rows),
+  // with the storeys and the path of report.html.
+  const std::vector<std::string>& console = lines["console"];
+  ASSERT_GE(console.size(), 8u) << "see " << done;
+  EXPECT_NE(console[0].find("[Storey] done in"), std::string::npos) << console[0];
+  auto shown = [&console](const std::string& text) {
+    for (const std::string& line : console)
+      if (line.find(text) != std::string::npos) return true;
+    return false;
+  };
+  EXPECT_TRUE(shown("[Storey]   storeys: ")) << "see " << done;
+  EXPECT_TRUE(shown("[Storey]     storey 0: floor at ")) << "see " << done;
+  EXPECT_TRUE(shown("[Storey]   map: " + std::to_string(points) + " points"));
+  EXPECT_TRUE(shown("[Storey]   report: " + home.file("out/report.html"))) << "see " << done;
+  EXPECT_TRUE(fs::exists(home.file("out/report.html")));
+  for (const std::string& line : console)
+    EXPECT_EQ(line.find('|'), std::string::npos) << "markdown in the console: " << line;
+  for (const std::string& line : lines["console_warning"])
+    EXPECT_EQ(line.find(" [Storey] warning: "), 0u) << line;
+  // The progress dialog showed the stage, the elapsed time and the time left.
+  ASSERT_EQ(lines.count("progress"), 1u) << "see " << done;
+  const std::string& progress = lines["progress"][0];
+  EXPECT_NE(progress.find("Storey SLAM: "), std::string::npos) << progress;
+  EXPECT_NE(progress.find(" elapsed, "), std::string::npos) << progress;
+  EXPECT_NE(progress.find(" left"), std::string::npos) << progress;
   ASSERT_TRUE(fs::exists(STOREY_SCREENSHOT));
   EXPECT_GT(fs::file_size(STOREY_SCREENSHOT), 20000u) << "a screenshot of the whole window";
 }

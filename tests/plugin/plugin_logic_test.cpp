@@ -1,5 +1,6 @@
 // The plugin's logic that needs neither Qt nor CloudCompare: the rectangle
-// shown for each SRP and the calibration/output defaults. (planes.json itself
+// shown for each SRP, the calibration/output defaults and the console's lines
+// after a run. (planes.json itself
 // is tested in tests/unit/export/planes_json_test.cpp, "Export storeys"'
 // writer core/export/storey_files.h in tests/unit/export/storey_files_test.cpp.)
 // Expected values are worked out by hand from the fixtures below.
@@ -111,6 +112,34 @@ TEST(PluginRun, MissingLogIsAnErrorNamingIt) {
     FAIL() << "no error";
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("/nonexistent/walk.bag"), std::string::npos) << e.what();
+  }
+}
+
+TEST(PluginRun, ConsoleLinesAreTheRunSummaryAndItsWarnings) {
+  RunOutcome o;
+  o.out_dir = "/runs/walk_storey";
+  o.seconds = 12.34;
+  o.result.report_json = R"({"input": {"log": "/runs/walk.bag"},
+    "map": {"points": 1000, "voxel_size_m": 0.02},
+    "storeys": [{"index": 0, "floor_elevation": 0.0, "clear_height": 2.5, "area": 30}],
+    "warning_count": 2, "warnings": ["IMU gap of 0.2 s", "scan dropped"]})";
+  const std::vector<ConsoleLine> lines = runConsoleLines(o, "3 SRPs");
+  ASSERT_GE(lines.size(), 4u);
+  EXPECT_EQ(lines[0].text, "[Storey] done in 12.3 s: 3 SRPs");
+  auto has = [&lines](const std::string& text, bool warning) {
+    for (const ConsoleLine& l : lines)
+      if (l.text == text) return l.warning == warning;
+    return false;
+  };
+  EXPECT_TRUE(has("[Storey]   log: /runs/walk.bag", false));
+  EXPECT_TRUE(has("[Storey]     storey 0: floor at 0.00 m, clear height 2.50 m, 30 m^2", false));
+  EXPECT_TRUE(has("[Storey]   warnings: 2 (report.md)", false));
+  EXPECT_TRUE(has("[Storey]   report: /runs/walk_storey/report.html", false));
+  EXPECT_TRUE(has("[Storey] warning: IMU gap of 0.2 s", true));
+  EXPECT_TRUE(has("[Storey] warning: scan dropped", true));
+  for (const ConsoleLine& l : lines) {
+    EXPECT_EQ(l.text.rfind("[Storey] ", 0), 0u) << l.text;
+    EXPECT_EQ(l.text.find('|'), std::string::npos) << "no markdown table rows: " << l.text;
   }
 }
 

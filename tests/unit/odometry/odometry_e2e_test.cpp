@@ -11,6 +11,7 @@
 #include "config/config.h"
 #include "eval/association.h"
 #include "eval/ate.h"
+#include "io/log_reader.h"
 #include "odometry/odometry.h"
 #include "pipeline/pipeline.h"
 #include "sim/simulator.h"
@@ -88,6 +89,48 @@ TEST(OdometryEndToEnd, ImuUpsideDownTurnedAt200Hz) {
   spec.sensors.T_body_imu = Pose(upside_down_turned, Eigen::Vector3d(0.05, -0.03, 0.02));
   spec.validate();
   expectAccurate(simulateAndRun(spec));
+}
+
+TEST(OdometryEndToEnd, ALogEndingInsideAScanDropsThatScan) {
+  // Found by `storey bench` (random:2, a 200 Hz IMU): the last scan ended 6 us
+  // after the last IMU sample, and the run stopped with an error. Now the
+  // scans the IMU does not cover to their end are dropped and counted.
+  test::TempDir dir;
+  sim::SimulationOptions options;
+  options.max_duration = 6.0;
+  options.threads = 2;
+  sim::simulate(sim::loadBuildingSpec("tiny"), options, dir.file("sim"));
+  const Config config = loadRunConfig("", dir.file("sim/") + sim::kCalibrationFile);
+  std::vector<LogMessage> messages;
+  {
+    const auto reader = openLog(dir.file("sim/") + sim::kBagFile, config.input, config.sensor);
+    LogMessage message;
+    while (reader->next(message)) messages.push_back(std::move(message));
+  }
+  std::int64_t last_scan_ns = 0;
+  for (const LogMessage& m : messages)
+    if (const auto* scan = std::get_if<Scan>(&m)) last_scan_ns = scan->stamp_ns;
+  LidarInertialOdometry odometry(config.odometry, config.sensor);
+  std::size_t results = 0, scans = 0;
+  OdometryResult result;
+  for (const LogMessage& m : messages) {
+    if (const auto* scan = std::get_if<Scan>(&m)) {
+      odometry.addScan(*scan);
+      ++scans;
+    } else if (std::get<ImuSample>(m).stamp_ns <= last_scan_ns + 50'000'000) {
+      odometry.addImu(std::get<ImuSample>(m));  // the IMU ends half-way through the last scan
+    }
+    while (odometry.nextResult(result)) ++results;
+  }
+  ASSERT_NO_THROW(odometry.finish());
+  while (odometry.nextResult(result)) ++results;
+  const OdometryDrops& drops = odometry.drops();
+  EXPECT_EQ(drops.after_last_imu, 1);
+  // Every other scan has its result (or was dropped for another counted reason).
+  EXPECT_EQ(results + static_cast<std::size_t>(drops.after_last_imu + drops.before_first_imu +
+                                               drops.empty),
+            scans);
+  EXPECT_LE(static_cast<std::int64_t>(scans - results), 2);
 }
 
 TEST(OdometryEndToEnd, MovingStartIsAClearError) {

@@ -1,0 +1,200 @@
+// `storey bench`: random buildings (storey simulate random:SEED), each mapped
+// with DEFAULT settings and only its simulated calibration file, evaluated
+// against the truth; one table (markdown + JSON) with a row per seed and the
+// distribution of each figure. Each step is a child `storey` process (its
+// peak memory measured, its log kept); a failing seed is a row with its error.
+#include <fcntl.h>
+#include <signal.h>
+#include <sys/prctl.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <mutex>
+#include <sstream>
+#include <thread>
+
+#include "bench_table.h"
+#include "commands.h"
+#include "common/atomic_file.h"
+#include "common/error.h"
+#include "progress_bar.h"
+
+namespace storey::cli {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct StepResult {
+  int exit_code = -1;
+  double peak_mb = 0.0;
+};
+
+/// Runs this program with `args`, stdout and stderr into `log_path`.
+StepResult runSelf(const std::vector<std::string>& args, const std::string& log_path) {
+  std::vector<std::string> argv_storage{"/proc/self/exe"};
+  argv_storage.insert(argv_storage.end(), args.begin(), args.end());
+  std::vector<char*> argv;
+  for (std::string& a : argv_storage) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  // fork + exec rather than posix_spawn: the child asks to be sent SIGTERM
+  // when the thread that started it dies, so stopping `storey bench` (Ctrl-C,
+  // kill) stops its steps too. Only async-signal-safe calls before exec.
+  const pid_t parent = getpid();
+  const char* log = log_path.c_str();
+  const pid_t pid = fork();
+  StepResult result;
+  if (pid < 0) return result;
+  if (pid == 0) {
+    if (prctl(PR_SET_PDEATHSIG, SIGTERM) != 0 || getppid() != parent) _exit(127);
+    const int fd = open(log, O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    if (fd < 0 || dup2(fd, 1) < 0 || dup2(fd, 2) < 0) _exit(127);
+    execv("/proc/self/exe", argv.data());
+    _exit(127);
+  }
+  int status = 0;
+  rusage usage{};
+  while (wait4(pid, &status, 0, &usage) < 0) {
+    if (errno != EINTR) return result;
+  }
+  result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+  result.peak_mb = static_cast<double>(usage.ru_maxrss) / 1024.0;  // ru_maxrss in KiB
+  return result;
+}
+
+/// The last non-empty line of a log (the one-line error of a failed step).
+std::string lastLine(const std::string& path) {
+  std::ifstream in(path);
+  std::string line, last;
+  while (std::getline(in, line))
+    if (line.find_first_not_of(" \t\r") != std::string::npos) last = line;
+  return last.empty() ? "no output" : last;
+}
+
+std::vector<std::uint64_t> parseSeeds(const std::string& text) {
+  std::vector<std::uint64_t> seeds;
+  std::stringstream list(text);
+  std::string item;
+  while (std::getline(list, item, ',')) {
+    try {
+      const std::size_t dash = item.find('-');
+      if (dash == std::string::npos) {
+        seeds.push_back(std::stoull(item));
+      } else {
+        const std::uint64_t a = std::stoull(item.substr(0, dash)),
+                            b = std::stoull(item.substr(dash + 1));
+        if (b < a || b - a > 100000) throw Error("");
+        for (std::uint64_t s = a; s <= b; ++s) seeds.push_back(s);
+      }
+    } catch (const std::exception&) {
+      throw Error("--seeds '" + text + "': expected seeds like 1-30 or 1,4,9 or 1-10,1001-1010");
+    }
+  }
+  if (seeds.empty()) throw Error("--seeds: no seed given");
+  return seeds;
+}
+
+std::string fixed(double v, int decimals) {
+  char text[32];
+  std::snprintf(text, sizeof(text), "%.*f", decimals, v);
+  return text;
+}
+
+}  // namespace
+
+int runBench(const BenchOptions& options) {
+  const std::vector<std::uint64_t> seeds = parseSeeds(options.seeds);
+  const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
+  const int jobs = options.jobs > 0 ? options.jobs : static_cast<int>(cores);
+  const int threads = std::max(1, static_cast<int>(cores) / jobs);
+  std::error_code ec;
+  fs::create_directories(options.out_dir, ec);
+  if (ec) throw Error(options.out_dir + ": cannot create the folder: " + ec.message());
+
+  std::vector<BenchRow> rows(seeds.size());
+  std::atomic<std::size_t> next{0};
+  std::mutex print;
+  std::size_t done = 0;
+  std::cerr << "bench: " << seeds.size() << " seeds, " << jobs << " at a time, into "
+            << options.out_dir << '\n';
+  ProgressBar bar("bench");  // seeds done, elapsed, time left; the seeds' lines above it
+  bar.update(0.0, "seeds");
+
+  auto work = [&] {
+    for (std::size_t i = next++; i < seeds.size(); i = next++) {
+      BenchRow& row = rows[i];
+      row.seed = seeds[i];
+      const fs::path dir = fs::path(options.out_dir) / ("seed-" + std::to_string(row.seed));
+      fs::remove_all(dir, ec);
+      fs::create_directories(dir);
+      const std::string sim = (dir / "sim").string(), run = (dir / "run").string();
+      std::vector<std::string> simulate{"simulate",
+                                        "random:" + std::to_string(row.seed),
+                                        "-o",
+                                        sim,
+                                        "--no-progress",
+                                        "--threads",
+                                        std::to_string(threads)};
+      if (options.max_duration > 0.0)
+        simulate.insert(simulate.end(), {"--duration", fixed(options.max_duration, 3)});
+      const std::vector<std::pair<std::string, std::vector<std::string>>> steps{
+          {"simulate", simulate},
+          {"run",
+           {"run", sim + "/simulation.bag", "--calibration", sim + "/calibration.yaml", "-o", run,
+            "--no-render"}},
+          {"eval",
+           {"eval", "--gt", sim + "/groundtruth_lidar.tum", "--est", run + "/trajectory.tum",
+            "--storeys", sim + "/storeys.yaml", "--mesh", sim + "/building.ply", "--map",
+            run + "/map.ply", "--json", (dir / "eval.json").string(), "--threads",
+            std::to_string(threads)}}};
+      for (const auto& [name, args] : steps) {
+        const std::string log = (dir / (name + ".log")).string();
+        const StepResult step = runSelf(args, log);
+        if (name == "run") row.peak_memory_mb = step.peak_mb;
+        if (step.exit_code != 0) {
+          row.error = name + ": " + lastLine(log);
+          break;
+        }
+      }
+      readBenchRow(dir.string(), row);
+      if (!options.keep) {
+        // The bulky files; the spec, the reports and the logs stay.
+        for (const char* bulky :
+             {"sim/simulation.bag", "sim/building.ply", "sim/groundtruth_imu.tum", "run/map.las",
+              "run/map.ply", "run/map.pcd", "run/storeys"})
+          fs::remove_all(dir / bulky, ec);
+      }
+      std::lock_guard<std::mutex> lock(print);
+      ++done;
+      std::string line = "bench: [" + std::to_string(done) + "/" + std::to_string(seeds.size()) +
+                         "] seed " + std::to_string(row.seed) + ": ";
+      if (!row.error.empty())
+        line += "FAILED (" + row.error + ")";
+      else
+        line += std::to_string(row.storeys) + " storeys, ATE " +
+                (row.ate_m ? fixed(*row.ate_m, 3) : "?") + " m, worst floor " +
+                (row.worst_floor_m ? fixed(*row.worst_floor_m, 3) : "?") + " m";
+      bar.print(line);
+      bar.update(static_cast<double>(done) / static_cast<double>(seeds.size()), "seeds");
+    }
+  };
+  std::vector<std::thread> workers;
+  for (int j = 0; j < jobs; ++j) workers.emplace_back(work);
+  for (std::thread& t : workers) t.join();
+
+  const std::string title = "storey bench --seeds " + options.seeds;
+  writeFileAtomically((fs::path(options.out_dir) / "benchmark.md").string(),
+                      benchMarkdown(rows, title));
+  writeFileAtomically((fs::path(options.out_dir) / "benchmark.json").string(), benchJson(rows));
+  std::cout << benchMarkdown(rows, title) << "\nWrote " << options.out_dir
+            << "/benchmark.md and benchmark.json\n";
+  return 0;
+}
+
+}  // namespace storey::cli
