@@ -41,8 +41,8 @@ RunDialog::RunDialog(const QString& log_path, QWidget* parent) : QDialog(parent)
     form->addRow(label, row);
   };
   fileRow(log_, "Log:", "ROS1 bag, Velodyne pcap or PCD folder", "LiDAR + IMU log", false);
-  fileRow(config_file_, "Config file:", "optional: built-in defaults", "Storey configuration (YAML)",
-          false);
+  fileRow(config_file_, "Config file:", "optional: built-in defaults",
+          "Storey configuration (YAML)", false);
   fileRow(calibration_, "Calibration:", "optional: calibration.yaml beside the log, if any",
           "Sensor calibration (YAML)", false);
   fileRow(out_dir_, "Output folder:", "default: <log folder>/<log name>_storey", "Output folder",
@@ -51,7 +51,8 @@ RunDialog::RunDialog(const QString& log_path, QWidget* parent) : QDialog(parent)
 
   sensor_ = new QComboBox;
   for (LidarModel m : kSensorPresets) sensor_->addItem(toString(m));
-  sensor_->setToolTip("LiDAR model (ring elevations, firing timing); the calibration file sets it too");
+  sensor_->setToolTip(
+      "LiDAR model (ring elevations, firing timing); the calibration file sets it too");
   form->addRow("Sensor preset:", sensor_);
 
   voxel_ = new QDoubleSpinBox;
@@ -83,7 +84,8 @@ RunDialog::RunDialog(const QString& log_path, QWidget* parent) : QDialog(parent)
     try {
       config().validate();
     } catch (const Error& e) {
-      status_->setText(QString("<font color=red>%1</font>").arg(QString::fromStdString(e.what()).toHtmlEscaped()));
+      status_->setText(QString("<font color=red>%1</font>")
+                           .arg(QString::fromStdString(e.what()).toHtmlEscaped()));
       return;
     }
     accept();
@@ -114,7 +116,9 @@ void RunDialog::setConfigFile(const QString& path) {
   reload();
 }
 
-void RunDialog::setOutputFolder(const QString& path) { out_dir_->setText(path); }
+void RunDialog::setOutputFolder(const QString& path) {
+  out_dir_->setText(path);
+}
 
 RunRequest RunDialog::request() const {
   RunRequest r;
@@ -137,7 +141,8 @@ void RunDialog::reload() {
   } catch (const Error& e) {
     loaded_ = Config{};
     load_error_ = QString::fromStdString(e.what());
-    status_->setText(QString("<font color=red>%1</font>").arg(QString::fromStdString(e.what()).toHtmlEscaped()));
+    status_->setText(
+        QString("<font color=red>%1</font>").arg(QString::fromStdString(e.what()).toHtmlEscaped()));
   }
   sensor_->setCurrentText(toString(loaded_.sensor.lidar_model));
   voxel_->setValue(loaded_.map.voxel_size);

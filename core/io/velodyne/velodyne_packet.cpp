@@ -13,7 +13,9 @@ constexpr std::size_t kTimestampOffset = 1200;
 /// A block-to-block azimuth step above this is a glitch, not rotation [0.01 deg].
 constexpr int kMaxPlausibleStep = 500;
 
-std::uint16_t u16(const std::uint8_t* p) { return static_cast<std::uint16_t>(p[0] | (p[1] << 8)); }
+std::uint16_t u16(const std::uint8_t* p) {
+  return static_cast<std::uint16_t>(p[0] | (p[1] << 8));
+}
 std::uint32_t u32(const std::uint8_t* p) {
   return static_cast<std::uint32_t>(p[0]) | (static_cast<std::uint32_t>(p[1]) << 8) |
          (static_cast<std::uint32_t>(p[2]) << 16) | (static_cast<std::uint32_t>(p[3]) << 24);
@@ -28,11 +30,16 @@ int s12(const std::uint8_t* p) {
 
 const char* toString(PacketProblem problem) {
   switch (problem) {
-    case PacketProblem::kNone: return "ok";
-    case PacketProblem::kWrongSize: return "velodyne_packet_wrong_size";
-    case PacketProblem::kBadBlockFlag: return "velodyne_packet_bad_block_flag";
-    case PacketProblem::kBadAzimuth: return "velodyne_packet_bad_azimuth";
-    case PacketProblem::kUnknownReturnMode: return "velodyne_packet_unknown_return_mode";
+    case PacketProblem::kNone:
+      return "ok";
+    case PacketProblem::kWrongSize:
+      return "velodyne_packet_wrong_size";
+    case PacketProblem::kBadBlockFlag:
+      return "velodyne_packet_bad_block_flag";
+    case PacketProblem::kBadAzimuth:
+      return "velodyne_packet_bad_azimuth";
+    case PacketProblem::kUnknownReturnMode:
+      return "velodyne_packet_unknown_return_mode";
   }
   return "unknown";
 }
@@ -133,8 +140,8 @@ PacketProblem PacketDecoder::decode(const std::uint8_t* data, std::size_t size,
         const double fraction = options_.azimuth == AzimuthInterpolation::kPerLaser
                                     ? within_step / step_duration
                                     : static_cast<double>(seq) / sequences;
-        double azimuth_deg = (packet.block_azimuth[b] + rotation * fraction) * 0.01 -
-                             cal.azimuth_offset_deg;
+        double azimuth_deg =
+            (packet.block_azimuth[b] + rotation * fraction) * 0.01 - cal.azimuth_offset_deg;
         azimuth_deg -= 360.0 * std::floor(azimuth_deg / 360.0);
         const double az = azimuth_deg * kDegToRad;
         const double horizontal = distance * cos_el_[laser];

@@ -25,7 +25,7 @@ namespace storey::velodyne {
 
 /// How the azimuth of a laser inside a block is obtained.
 enum class AzimuthInterpolation {
-  kPerLaser,     ///< block azimuth + rotation until the laser fired (the manuals' "precise azimuth")
+  kPerLaser,  ///< block azimuth + rotation until the laser fired (the manuals' "precise azimuth")
   kPerSequence,  ///< block azimuth + rotation until the firing sequence started (VeloView 3.x)
 };
 
@@ -39,16 +39,16 @@ struct DecodeOptions {
 
 /// One laser return.
 struct Return {
-  float x = 0, y = 0, z = 0;    ///< LiDAR frame [m]
-  float distance = 0;           ///< [m]
-  float azimuth_deg = 0;        ///< azimuth used for the position [deg], in [0, 360)
-  double time_offset_s = 0.0;   ///< firing time after the packet timestamp [s]
-  std::uint8_t intensity = 0;   ///< calibrated reflectivity [0, 255]
-  std::uint8_t laser = 0;       ///< laser id (channel within its firing sequence)
-  std::uint8_t block = 0;       ///< data block in the packet, 0..11
-  std::uint8_t sequence = 0;    ///< firing sequence within the block (VLP-16: 0 or 1)
-  std::uint16_t ring = 0;       ///< rank by elevation, 0 = lowest
-  bool second_return = false;   ///< dual mode: from the pair's second block
+  float x = 0, y = 0, z = 0;   ///< LiDAR frame [m]
+  float distance = 0;          ///< [m]
+  float azimuth_deg = 0;       ///< azimuth used for the position [deg], in [0, 360)
+  double time_offset_s = 0.0;  ///< firing time after the packet timestamp [s]
+  std::uint8_t intensity = 0;  ///< calibrated reflectivity [0, 255]
+  std::uint8_t laser = 0;      ///< laser id (channel within its firing sequence)
+  std::uint8_t block = 0;      ///< data block in the packet, 0..11
+  std::uint8_t sequence = 0;   ///< firing sequence within the block (VLP-16: 0 or 1)
+  std::uint16_t ring = 0;      ///< rank by elevation, 0 = lowest
+  bool second_return = false;  ///< dual mode: from the pair's second block
 };
 
 /// Counts of what a packet held besides the kept returns.
@@ -63,7 +63,7 @@ struct DataPacket {
   std::uint8_t return_mode = 0;    ///< ReturnMode value as sent
   std::uint8_t product = 0;        ///< product id byte as sent
   std::array<std::uint16_t, kBlocksPerPacket> block_azimuth{};  ///< [0.01 deg]
-  std::vector<Return> returns;     ///< kept returns in packet order (block, sequence, laser)
+  std::vector<Return> returns;  ///< kept returns in packet order (block, sequence, laser)
   PacketCounts counts;
   bool dual() const { return return_mode == static_cast<std::uint8_t>(ReturnMode::kDual); }
 };
@@ -71,9 +71,9 @@ struct DataPacket {
 /// Why a payload is not a usable data packet.
 enum class PacketProblem {
   kNone,
-  kWrongSize,    ///< not 1206 bytes
-  kBadBlockFlag, ///< a block does not start with 0xFFEE
-  kBadAzimuth,   ///< a block azimuth > 36000 (36000 itself is sent for 0)
+  kWrongSize,     ///< not 1206 bytes
+  kBadBlockFlag,  ///< a block does not start with 0xFFEE
+  kBadAzimuth,    ///< a block azimuth > 36000 (36000 itself is sent for 0)
   kUnknownReturnMode,
 };
 const char* toString(PacketProblem problem);
@@ -108,11 +108,12 @@ class PacketDecoder {
 /// Scales (HDL-32E manual, Appendix B): gyro 0.09766 deg/s per LSB, temperature
 /// 0.1453 C per LSB + 25 C, acceleration 0.001221 g per LSB.
 struct PositionPacket {
-  std::uint32_t timestamp_us = 0;      ///< microseconds past the hour (same clock as data packets), byte 198
-  std::array<double, 3> gyro_dps{};    ///< boards 1..3 [deg/s]
-  std::array<double, 3> temp_c{};      ///< boards 1..3 [C]
-  std::array<double, 6> accel_g{};     ///< X1, Y1, X2, Y2, X3, Y3 [g]
-  bool has_nmea = false;               ///< a "$GP" sentence at byte 206
+  std::uint32_t timestamp_us =
+      0;  ///< microseconds past the hour (same clock as data packets), byte 198
+  std::array<double, 3> gyro_dps{};  ///< boards 1..3 [deg/s]
+  std::array<double, 3> temp_c{};    ///< boards 1..3 [C]
+  std::array<double, 6> accel_g{};   ///< X1, Y1, X2, Y2, X3, Y3 [g]
+  bool has_nmea = false;             ///< a "$GP" sentence at byte 206
 };
 
 /// Decodes a 512-byte position packet; false when the size is wrong.

@@ -16,15 +16,15 @@ constexpr std::array<double, 16> kVlp16ElevationDeg = {
 
 // HDL-32E manual, Appendix A "Vertical angles": laser id -> elevation [deg].
 constexpr std::array<double, 32> kHdl32eElevationDeg = {
-    -30.67, -9.33, -29.33, -8.00, -28.00, -6.67, -26.67, -5.33, -25.33, -4.00, -24.00,
-    -2.67,  -22.67, -1.33, -21.33, 0.00,  -20.00, 1.33,  -18.67, 2.67,  -17.33, 4.00,
-    -16.00, 5.33,  -14.67, 6.67,  -13.33, 8.00,  -12.00, 9.33,  -10.67, 10.67};
+    -30.67, -9.33,  -29.33, -8.00,  -28.00, -6.67,  -26.67, -5.33,  -25.33, -4.00,  -24.00,
+    -2.67,  -22.67, -1.33,  -21.33, 0.00,   -20.00, 1.33,   -18.67, 2.67,   -17.33, 4.00,
+    -16.00, 5.33,   -14.67, 6.67,   -13.33, 8.00,   -12.00, 9.33,   -10.67, 10.67};
 
 // VLP-32C manual, table "Vertical Angles and Azimuth Offsets": laser id ->
 // elevation [deg] and azimuth offset [deg] (the offset is added to the block
 // azimuth; VeloView's rotCorrection and Laser::azimuth_offset_deg are its negative).
 constexpr std::array<double, 32> kVlp32cElevationDeg = {
-    -25.0,  -1.0,   -1.667, -15.639, -11.31, 0.0,   -0.667, -8.843, -7.254, 0.333, -0.333,
+    -25.0,  -1.0,   -1.667, -15.639, -11.31, 0.0,    -0.667, -8.843, -7.254, 0.333,  -0.333,
     -6.148, -5.333, 1.333,  0.667,   -4.0,   -4.667, 1.667,  1.0,    -3.667, -3.333, 3.333,
     2.333,  -2.667, -3.0,   7.0,     4.667,  -2.333, -2.0,   15.0,   10.333, -1.333};
 constexpr std::array<double, 32> kVlp32cAzimuthOffsetDeg = {
@@ -52,9 +52,12 @@ std::vector<double> tagValues(const std::string& text, const std::string& tag,
 
 const char* toString(Model model) {
   switch (model) {
-    case Model::kVlp16: return "VLP-16";
-    case Model::kVlp32c: return "VLP-32C";
-    case Model::kHdl32e: return "HDL-32E";
+    case Model::kVlp16:
+      return "VLP-16";
+    case Model::kVlp32c:
+      return "VLP-32C";
+    case Model::kHdl32e:
+      return "HDL-32E";
   }
   return "unknown Velodyne model";
 }
@@ -65,27 +68,36 @@ int laserCount(Model model) {
 
 double laserFiringOffset(Model model, int id) {
   switch (model) {
-    case Model::kVlp16: return id * kVlp16FiringS;
-    case Model::kVlp32c: return (id / 2) * kVlp32cFiringS;
-    case Model::kHdl32e: return id * kHdl32eFiringS;
+    case Model::kVlp16:
+      return id * kVlp16FiringS;
+    case Model::kVlp32c:
+      return (id / 2) * kVlp32cFiringS;
+    case Model::kHdl32e:
+      return id * kHdl32eFiringS;
   }
   return 0.0;
 }
 
 double sequencePeriod(Model model) {
   switch (model) {
-    case Model::kVlp16: return kVlp16SequenceS;
-    case Model::kVlp32c: return kVlp32cSequenceS;
-    case Model::kHdl32e: return kHdl32eSequenceS;
+    case Model::kVlp16:
+      return kVlp16SequenceS;
+    case Model::kVlp32c:
+      return kVlp32cSequenceS;
+    case Model::kHdl32e:
+      return kHdl32eSequenceS;
   }
   return 0.0;
 }
 
 const char* toString(ReturnMode mode) {
   switch (mode) {
-    case ReturnMode::kStrongest: return "strongest return";
-    case ReturnMode::kLast: return "last return";
-    case ReturnMode::kDual: return "dual return";
+    case ReturnMode::kStrongest:
+      return "strongest return";
+    case ReturnMode::kLast:
+      return "last return";
+    case ReturnMode::kDual:
+      return "dual return";
   }
   return "unknown return mode";
 }

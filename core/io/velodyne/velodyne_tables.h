@@ -34,8 +34,9 @@ inline constexpr std::uint8_t kProductHdl32e = 0x21;
 inline constexpr std::uint8_t kProductVlp16 = 0x22;
 inline constexpr std::uint8_t kProductVlp32c = 0x28;
 
-inline constexpr std::size_t kDataPacketSize = 1206;     ///< UDP payload of a data packet [bytes]
-inline constexpr std::size_t kPositionPacketSize = 512;  ///< HDL-32E / VLP-16 position packet [bytes]
+inline constexpr std::size_t kDataPacketSize = 1206;  ///< UDP payload of a data packet [bytes]
+inline constexpr std::size_t kPositionPacketSize =
+    512;  ///< HDL-32E / VLP-16 position packet [bytes]
 inline constexpr int kBlocksPerPacket = 12;
 inline constexpr int kChannelsPerBlock = 32;
 inline constexpr std::uint16_t kBlockFlag = 0xEEFF;  ///< 0xFF 0xEE read little-endian
@@ -43,16 +44,16 @@ inline constexpr std::uint16_t kDefaultDataPort = 2368;
 inline constexpr std::uint16_t kDefaultPositionPort = 8308;
 
 /// Timing constants from the manuals [s].
-inline constexpr double kVlp16FiringS = 2.304e-6;     ///< between two lasers of a sequence
-inline constexpr double kVlp16SequenceS = 55.296e-6;  ///< between two firing sequences
-inline constexpr double kHdl32eFiringS = 1.152e-6;    ///< between two lasers
+inline constexpr double kVlp16FiringS = 2.304e-6;      ///< between two lasers of a sequence
+inline constexpr double kVlp16SequenceS = 55.296e-6;   ///< between two firing sequences
+inline constexpr double kHdl32eFiringS = 1.152e-6;     ///< between two lasers
 inline constexpr double kHdl32eSequenceS = 46.080e-6;  ///< between two data blocks
-inline constexpr double kVlp32cFiringS = 2.304e-6;    ///< between two laser pairs of a sequence
+inline constexpr double kVlp32cFiringS = 2.304e-6;     ///< between two laser pairs of a sequence
 inline constexpr double kVlp32cSequenceS = 55.296e-6;  ///< between two data blocks
 
 /// One laser of a calibration.
 struct Laser {
-  double elevation_deg = 0.0;     ///< vertical angle [deg], positive up
+  double elevation_deg = 0.0;       ///< vertical angle [deg], positive up
   double azimuth_offset_deg = 0.0;  ///< rotational correction [deg], subtracted from the azimuth
   double distance_offset_m = 0.0;   ///< added to the measured distance [m]
   std::uint16_t ring = 0;           ///< rank by elevation, 0 = lowest
@@ -61,7 +62,7 @@ struct Laser {
 /// Laser table of a model: index = laser id (channel within a firing sequence).
 struct Calibration {
   Model model = Model::kVlp16;
-  std::vector<Laser> lasers;        ///< 16 (VLP-16) or 32 (VLP-32C, HDL-32E)
+  std::vector<Laser> lasers;             ///< 16 (VLP-16) or 32 (VLP-32C, HDL-32E)
   double distance_resolution_m = 0.002;  ///< one distance LSB [m]
 };
 
