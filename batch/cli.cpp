@@ -80,6 +80,12 @@ int main(int argc, char** argv) {
   sim_cmd->add_option("--seed", simulate.seed, "random seed (default: the spec's)");
   sim_cmd->add_option("--range-noise", simulate.range_noise, "LiDAR range noise sigma [m]");
   sim_cmd->add_option("--imu-rate", simulate.imu_rate_hz, "IMU rate [Hz]");
+  sim_cmd->add_option("--lidar", simulate.lidar,
+                      "LiDAR model instead of the spec's: VLP-16, VLP-32C, HDL-32E, OS1-64");
+  sim_cmd->add_option("--imu", simulate.imu,
+                      "IMU grade instead of the spec's: tactical or consumer, optionally @HZ "
+                      "(consumer@100)");
+  sim_cmd->add_option("--motion", simulate.motion, "legged or handheld instead of the spec's");
   bool no_progress = false;
   sim_cmd->add_flag("--no-progress", no_progress, "no progress bar");
   sim_cmd->add_flag("--perfect-sensors", simulate.perfect_sensors,

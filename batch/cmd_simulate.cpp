@@ -9,12 +9,14 @@
 #include "commands.h"
 #include "common/error.h"
 #include "progress_bar.h"
+#include "sim/random_spec.h"
 #include "sim/simulator.h"
 
 namespace storey::cli {
 
 int runSimulate(const SimulateOptions& options) {
   sim::BuildingSpec spec = sim::loadBuildingSpec(options.preset_or_spec);
+  sim::applyRigOverrides(spec, {options.lidar, options.imu, options.motion});
   if (options.seed) spec.seed = *options.seed;
   if (options.range_noise) spec.sensors.lidar.range_noise = *options.range_noise;
   if (options.imu_rate_hz) spec.sensors.imu.rate = *options.imu_rate_hz;

@@ -41,6 +41,9 @@ struct SimulateOptions {
   std::optional<std::uint64_t> seed;
   std::optional<double> range_noise;  ///< [m]
   std::optional<double> imu_rate_hz;  ///< [Hz]
+  std::string lidar;                  ///< --lidar: LiDAR model override
+  std::string imu;                    ///< --imu: IMU grade override (GRADE or GRADE@HZ)
+  std::string motion;                 ///< --motion: legged or handheld
   bool progress = true;
   bool perfect_sensors = false;        ///< --perfect-sensors: no noise, dropouts or biases
   bool compress = true;                ///< --no-compress clears it: plain (not LZ4) bag chunks

@@ -124,6 +124,39 @@ BuildingSpec draw(std::uint64_t seed, std::uint64_t attempt) {
     b.atrium.glass_balustrade = rng.uniform() < 0.5;
     b.atrium.balustrade_height = mm(rng.uniform(1.0, 1.2));
   }
+
+  // The rig and the walk (drawn after the building, so its draw is unchanged).
+  static constexpr LidarModel kModels[] = {LidarModel::kVlp16, LidarModel::kVlp32c,
+                                           LidarModel::kHdl32e, LidarModel::kOs1_64};
+  sensors.lidar.model = kModels[uniformInt(rng, 0, 3)];
+  const ImuGrade grade = rng.uniform() < 0.5 ? ImuGrade::kTactical : ImuGrade::kConsumer;
+  const ImuRateRange rates = imuGradeRates(grade);
+  const double rate = rng.uniform() < 0.5 ? rates.max_hz : rates.max_hz / 2;
+  sensors.imu = imuGrade(grade, std::max(rate, rates.min_hz));
+  const double gyro_bias = grade == ImuGrade::kTactical ? 3e-3 : 1.5e-2;  // [rad/s]
+  const double accel_bias = grade == ImuGrade::kTactical ? 0.05 : 0.2;    // [m/s^2]
+  for (int i = 0; i < 3; ++i) {
+    sensors.imu.gyro_bias[i] = mm(rng.uniform(-gyro_bias, gyro_bias) * 1000.0) / 1000.0;
+    sensors.imu.accel_bias[i] = mm(rng.uniform(-accel_bias, accel_bias));
+  }
+  sensors.imu.orientation = rng.uniform() < 0.5;
+  if (rng.uniform() < 0.4) {
+    // A person walking with the sensors in hand: a person's speeds and gait.
+    RobotSpec handheld = robotForMotion(RobotMotion::kHandheld);
+    handheld.lane_offset = r.lane_offset;
+    handheld.start_offset = r.start_offset;
+    handheld.still_time = r.still_time;
+    handheld.walk_speed = mm(rng.uniform(0.8, 1.3));
+    handheld.stair_speed = mm(rng.uniform(0.4, 0.6));
+    handheld.max_yaw_rate = mm(rng.uniform(60.0, 90.0)) * kDeg;
+    HandheldGaitSpec& g = handheld.handheld_gait;
+    g.frequency = mm(rng.uniform(1.7, 2.1));
+    g.bounce = mm(rng.uniform(0.015, 0.025));  // amplitude: 3-5 cm peak to peak
+    g.roll = mm(rng.uniform(1.0, 3.0)) * kDeg;
+    g.pitch = mm(rng.uniform(1.0, 2.5)) * kDeg;
+    g.yaw = mm(rng.uniform(1.0, 2.5)) * kDeg;
+    r = handheld;
+  }
   return spec;
 }
 
@@ -144,6 +177,48 @@ BuildingSpec drawRandomSpec(std::uint64_t seed) {
   }
   throw Error("random:" + std::to_string(seed) + ": no valid building in 64 draws (" + last_error +
               ")");
+}
+
+void applyRigOverrides(BuildingSpec& spec, const RigOverrides& o) {
+  try {
+    if (!o.lidar.empty()) spec.sensors.lidar.model = lidarModelFromString(o.lidar);
+  } catch (const Error& e) {
+    throw Error(std::string("--lidar: ") + e.what());
+  }
+  if (!o.imu.empty()) {
+    const std::size_t at = o.imu.find('@');
+    try {
+      const ImuGrade grade = imuGradeFromString(o.imu.substr(0, at));
+      double rate = imuGradeRates(grade).max_hz;
+      if (at != std::string::npos) {
+        std::size_t used = 0;
+        rate = std::stod(o.imu.substr(at + 1), &used);
+        if (used != o.imu.size() - at - 1) throw Error("'" + o.imu + "': the rate is not a number");
+      }
+      const bool orientation = spec.sensors.imu.orientation;
+      spec.sensors.imu = imuGrade(grade, rate);
+      spec.sensors.imu.orientation = orientation;
+    } catch (const std::invalid_argument&) {
+      throw Error("--imu: '" + o.imu + "': expected GRADE or GRADE@RATE_HZ");
+    } catch (const Error& e) {
+      throw Error(std::string("--imu: ") + e.what());
+    }
+  }
+  if (!o.motion.empty()) {
+    RobotMotion motion;
+    try {
+      motion = robotMotionFromString(o.motion);
+    } catch (const Error& e) {
+      throw Error(std::string("--motion: ") + e.what());
+    }
+    if (motion != spec.robot.motion) {
+      RobotSpec robot = robotForMotion(motion);
+      robot.lane_offset = spec.robot.lane_offset;
+      robot.start_offset = spec.robot.start_offset;
+      robot.still_time = spec.robot.still_time;
+      spec.robot = robot;
+    }
+  }
 }
 
 std::optional<std::uint64_t> randomSeedOf(const std::string& name) {

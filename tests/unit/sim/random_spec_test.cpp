@@ -32,7 +32,7 @@ std::string readFile(const std::filesystem::path& path) {
 
 TEST(RandomSpec, SeedsOneToThirtyAreValidDifferAndSpread) {
   std::set<std::string> texts;
-  std::set<int> storeys, wings, rates;
+  std::set<int> storeys, wings, rates, models, grades, motions, orientation;
   int pitched = 0;
   double min_slope = 90, max_slope = 0, min_height = 10, max_height = 0;
   for (std::uint64_t seed = 1; seed <= 30; ++seed) {
@@ -47,6 +47,14 @@ TEST(RandomSpec, SeedsOneToThirtyAreValidDifferAndSpread) {
     storeys.insert(static_cast<int>(b.storey_heights.size()));
     wings.insert(b.wings);
     rates.insert(static_cast<int>(spec.sensors.imu.rate));
+    models.insert(static_cast<int>(spec.sensors.lidar.model));
+    ASSERT_TRUE(spec.sensors.imu.grade.has_value());
+    grades.insert(static_cast<int>(*spec.sensors.imu.grade));
+    const ImuRateRange range = imuGradeRates(*spec.sensors.imu.grade);
+    EXPECT_GE(spec.sensors.imu.rate, range.min_hz);
+    EXPECT_LE(spec.sensors.imu.rate, range.max_hz);
+    motions.insert(static_cast<int>(spec.robot.motion));
+    orientation.insert(spec.sensors.imu.orientation ? 1 : 0);
     for (double h : b.storey_heights) {
       EXPECT_GE(h, 2.7);
       EXPECT_LE(h, 4.8);
@@ -73,7 +81,11 @@ TEST(RandomSpec, SeedsOneToThirtyAreValidDifferAndSpread) {
   EXPECT_GE(storeys.size(), 5u) << "storey counts 2-7 should almost all appear in 30 seeds";
   EXPECT_EQ(*storeys.begin() >= 2 && *storeys.rbegin() <= 7, true);
   EXPECT_EQ(wings.size(), 2u);
-  EXPECT_EQ(rates.size(), 2u);
+  EXPECT_GE(rates.size(), 3u);        // 100, 200, 400 Hz
+  EXPECT_EQ(models.size(), 4u);       // VLP-16, VLP-32C, HDL-32E, OS1-64
+  EXPECT_EQ(grades.size(), 2u);       // tactical, consumer
+  EXPECT_EQ(motions.size(), 2u);      // legged, handheld
+  EXPECT_EQ(orientation.size(), 2u);  // with and without the orientation field
   EXPECT_GT(pitched, 5);
   EXPECT_LT(pitched, 25);
   EXPECT_LT(min_slope, 30.0);
@@ -120,6 +132,29 @@ TEST(RandomSpec, TheRouteNeverMeetsTheBuilding) {
 TEST(RandomSpec, SameSeedSameSpec) {
   EXPECT_EQ(buildingSpecYaml(drawRandomSpec(7)), buildingSpecYaml(drawRandomSpec(7)));
   EXPECT_NE(buildingSpecYaml(drawRandomSpec(7)), buildingSpecYaml(drawRandomSpec(8)));
+}
+
+TEST(RandomSpec, RigOverridesReplaceTheDrawsOnly) {
+  BuildingSpec spec = drawRandomSpec(11);
+  const Pose lidar_mount = spec.sensors.T_body_lidar;
+  const double lane = spec.robot.lane_offset;
+  const bool orientation = spec.sensors.imu.orientation;
+  applyRigOverrides(spec, {"OS1-64", "consumer@100", "handheld"});
+  EXPECT_EQ(spec.sensors.lidar.model, LidarModel::kOs1_64);
+  EXPECT_TRUE(spec.sensors.T_body_lidar.isApprox(lidar_mount));
+  EXPECT_EQ(spec.sensors.imu.grade, ImuGrade::kConsumer);
+  EXPECT_EQ(spec.sensors.imu.rate, 100.0);
+  EXPECT_EQ(spec.sensors.imu.orientation, orientation);
+  EXPECT_EQ(spec.robot.motion, RobotMotion::kHandheld);
+  EXPECT_EQ(spec.robot.lane_offset, lane);
+  EXPECT_NO_THROW(spec.validate());
+  applyRigOverrides(spec, {"", "tactical", "legged"});
+  EXPECT_EQ(spec.sensors.imu.rate, imuGradeRates(ImuGrade::kTactical).max_hz);
+  EXPECT_EQ(spec.robot.motion, RobotMotion::kLegged);
+  EXPECT_THROW(applyRigOverrides(spec, {"VLP-64", "", ""}), Error);
+  EXPECT_THROW(applyRigOverrides(spec, {"", "consumer@x", ""}), Error);
+  EXPECT_THROW(applyRigOverrides(spec, {"", "tactical@1000", ""}), Error);
+  EXPECT_THROW(applyRigOverrides(spec, {"", "", "wheeled"}), Error);
 }
 
 TEST(RandomSpec, NameParsing) {
