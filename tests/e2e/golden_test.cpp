@@ -14,13 +14,6 @@
 namespace storey {
 namespace {
 
-std::string readFile(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream os;
-  os << in.rdbuf();
-  return os.str();
-}
-
 /// "line N: <expected> | <actual>" for the first line that differs.
 std::string firstDifference(const std::string& expected, const std::string& actual) {
   std::istringstream e(expected), a(actual);
@@ -35,19 +28,19 @@ std::string firstDifference(const std::string& expected, const std::string& actu
 }
 
 TEST(Golden, TinyPresetWritesTheGoldenFiles) {
-  const std::filesystem::path golden = std::filesystem::path(STOREY_SOURCE_DIR) / "tests/golden/tiny";
+  const std::filesystem::path golden =
+      std::filesystem::path(STOREY_SOURCE_DIR) / "tests/golden/tiny";
   test::TempDir dir;
   const std::string out = (dir.path() / "out").string();
-  const test::RunResult run =
-      test::runStorey("run --preset tiny --no-render -o " + test::shellQuoted(out),
-                      dir.path().string());
+  const test::RunResult run = test::runStorey(
+      "run --preset tiny --no-render -o " + test::shellQuoted(out), dir.path().string());
   ASSERT_EQ(run.exit_code, 0) << run.err;
   for (const char* name : {"trajectory.tum", "keyframes.tum", "planes.json", "storeys.json"}) {
-    const std::string expected = readFile(golden / name);
+    const std::string expected = test::readText((golden / name).string());
     ASSERT_FALSE(expected.empty()) << "golden file missing: " << (golden / name);
-    const std::string actual = readFile(std::filesystem::path(out) / name);
-    EXPECT_TRUE(expected == actual) << name << " differs from the golden file, "
-                                    << firstDifference(expected, actual);
+    const std::string actual = test::readText((std::filesystem::path(out) / name).string());
+    EXPECT_TRUE(expected == actual)
+        << name << " differs from the golden file, " << firstDifference(expected, actual);
   }
 }
 

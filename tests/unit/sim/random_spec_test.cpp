@@ -23,13 +23,6 @@
 namespace storey::sim {
 namespace {
 
-std::string readFile(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream os;
-  os << in.rdbuf();
-  return os.str();
-}
-
 TEST(RandomSpec, SeedsOneToThirtyAreValidDifferAndSpread) {
   std::set<std::string> texts;
   std::set<int> storeys, wings, rates, models, grades, motions, orientation;
@@ -175,9 +168,9 @@ TEST(RandomSpec, SpecYamlReproducesTheFolder) {
   simulate(loadBuildingSpec((a / kSpecFile).string()), options, b.string());
   for (const char* name : {kSpecFile, kBagFile, kLidarTruthFile, kImuTruthFile, kMeshFile,
                            kStoreysFile, kCalibrationFile}) {
-    const std::string first = readFile(a / name);
+    const std::string first = test::readText((a / name).string());
     EXPECT_FALSE(first.empty()) << name;
-    EXPECT_TRUE(first == readFile(b / name)) << name << " differs";
+    EXPECT_TRUE(first == test::readText((b / name).string())) << name << " differs";
   }
 }
 

@@ -15,6 +15,7 @@
 #include "common/error.h"
 #include "config/config.h"
 #include "sim/world.h"
+#include "support/temp_dir.h"
 
 namespace storey::sim {
 namespace {
@@ -35,13 +36,6 @@ fs::path scratch(const std::string& name) {
   const fs::path dir = root.path / name;
   fs::remove_all(dir);
   return dir;
-}
-
-std::string readAll(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream os;
-  os << in.rdbuf();
-  return os.str();
 }
 
 int countLines(const fs::path& path, bool skip_comments = true) {
@@ -140,7 +134,9 @@ TEST(SimOutput, BagHasTheVelodyneDriverLayout) {
   EXPECT_EQ(countLines(out / kImuTruthFile), result.imu_samples);
   for (const char* name : {kMeshFile, kStoreysFile, kCalibrationFile})
     EXPECT_TRUE(fs::exists(out / name)) << name;
-  EXPECT_EQ(readAll(out / kMeshFile).rfind("ply\nformat binary_little_endian 1.0\n", 0), 0u);
+  EXPECT_EQ(
+      test::readText((out / kMeshFile).string()).rfind("ply\nformat binary_little_endian 1.0\n", 0),
+      0u);
   Config config;
   applyCalibrationFile(config, (out / kCalibrationFile).string());
   EXPECT_TRUE(config.sensor.T_imu_lidar.isApprox(
@@ -163,7 +159,8 @@ TEST(SimOutput, SameSpecAndSeedGiveTheSameBytes) {
   int files = 0;
   for (const auto& entry : fs::directory_iterator(a)) {
     const std::string name = entry.path().filename().string();
-    EXPECT_TRUE(readAll(entry.path()) == readAll(b / name)) << name << " differs";
+    EXPECT_TRUE(test::readText(entry.path().string()) == test::readText((b / name).string()))
+        << name << " differs";
     ++files;
   }
   EXPECT_EQ(files, 7);  // bag, two truths, mesh, storeys, calibration, spec
@@ -172,7 +169,7 @@ TEST(SimOutput, SameSpecAndSeedGiveTheSameBytes) {
   other.seed = spec.seed + 1;
   const fs::path c = scratch("same_c");
   simulate(other, shortRun(), c.string());
-  EXPECT_FALSE(readAll(a / kBagFile) == readAll(c / kBagFile));
+  EXPECT_FALSE(test::readText((a / kBagFile).string()) == test::readText((c / kBagFile).string()));
 }
 
 TEST(SimOutput, CancelLeavesNoOutput) {
@@ -192,7 +189,7 @@ TEST(SimOutput, StoreysAreInTheWorldFrame) {
   options.max_duration = 0.5;
   const BuildingSpec spec = loadBuildingSpec("default");
   simulate(spec, options, out.string());
-  const std::string text = readAll(out / kStoreysFile);
+  const std::string text = test::readText((out / kStoreysFile).string());
   // The LiDAR starts at body_height + 0.12 above the ground floor: floor_z = -0.62.
   EXPECT_NE(text.find("floor_z: -0.620000"), std::string::npos) << text;
   EXPECT_NE(text.find("floor_z: 2.780000"), std::string::npos) << text;  // + 3.4
