@@ -56,6 +56,13 @@ void readSpec(const fs::path& path, BenchRow& row) {
     const Eigen::Vector3d axis = spec.sensors.T_body_lidar.rotation() * Eigen::Vector3d::UnitZ();
     row.lidar_tilt_deg = std::acos(std::clamp(axis.z(), -1.0, 1.0)) * 180.0 / M_PI;
     row.imu_rate_hz = spec.sensors.imu.rate;
+    row.imu_grade = spec.sensors.imu.grade ? sim::toString(*spec.sensors.imu.grade) : "custom";
+    if (b.atrium.rooms > 0) row.features = "atrium " + std::to_string(b.atrium.rooms);
+    if (std::abs(b.partition_angle - M_PI / 2) > 1e-9) {
+      char walls[32];
+      std::snprintf(walls, sizeof(walls), "walls %.0f deg", b.partition_angle * 180.0 / M_PI);
+      row.features += (row.features.empty() ? "" : ", ") + std::string(walls);
+    }
   } catch (const Error& e) {
     fail(row, e.what());
   }
@@ -166,10 +173,10 @@ const Column kColumns[] = {
 std::string benchMarkdown(const std::vector<BenchRow>& rows, const std::string& title) {
   std::ostringstream md;
   md << "### " << title << "\n\n";
-  md << "| seed | storeys (found) | wings | storey m | stairs deg | LiDAR (tilt deg) | IMU Hz | "
-        "motion";
+  md << "| seed | storeys (found) | wings | plan | storey m | stairs deg | LiDAR (tilt deg) | "
+        "IMU (Hz) | motion";
   for (const Column& c : kColumns) md << " | " << c.title;
-  md << " |\n|---:|---:|---:|---|---:|---|---:|---";
+  md << " |\n|---:|---:|---:|---|---|---:|---|---|---";
   for (std::size_t i = 0; i < std::size(kColumns); ++i) md << "|---:";
   md << "|\n";
   char text[64];
@@ -177,8 +184,9 @@ std::string benchMarkdown(const std::vector<BenchRow>& rows, const std::string& 
     std::snprintf(text, sizeof(text), "%.1f-%.1f", r.min_storey_height, r.max_storey_height);
     md << "| " << r.seed << " | " << r.storeys << " ("
        << (r.storeys_found ? std::to_string(*r.storeys_found) : "–") << ") | " << r.wings << " | "
-       << text << " | " << cell(r.stair_slope_deg, 0) << " | " << r.lidar << " ("
-       << cell(r.lidar_tilt_deg, 0) << ") | " << cell(r.imu_rate_hz, 0) << " | " << r.motion;
+       << (r.features.empty() ? "corridor" : r.features) << " | " << text << " | "
+       << cell(r.stair_slope_deg, 0) << " | " << r.lidar << " (" << cell(r.lidar_tilt_deg, 0)
+       << ") | " << r.imu_grade << " (" << cell(r.imu_rate_hz, 0) << ") | " << r.motion;
     if (!r.error.empty()) {
       md << " | **failed:** " << r.error;
       for (std::size_t i = 1; i < std::size(kColumns); ++i) md << " | ";
@@ -222,6 +230,8 @@ std::string benchJson(const std::vector<BenchRow>& rows) {
               {"lidar", r.lidar},
               {"lidar_tilt_deg", r.lidar_tilt_deg},
               {"imu_rate_hz", r.imu_rate_hz},
+              {"imu_grade", r.imu_grade},
+              {"features", r.features},
               {"motion", r.motion},
               {"duration_s", jsonOf(r.duration_s)}};
     for (const Column& c : kColumns) j[c.title] = jsonOf(r.*(c.member));

@@ -21,7 +21,11 @@ struct BenchRow {
   std::string lidar;
   double lidar_tilt_deg = 0.0;  ///< angle between the LiDAR's axis and the body's up axis
   double imu_rate_hz = 0.0;
+  std::string imu_grade = "custom";  ///< tactical, consumer or custom
   std::string motion = "legged";
+  /// The plan's special parts: "atrium N" (rooms), "walls D" (partition angle
+  /// [deg] when not 90); empty for a plain corridor building.
+  std::string features;
   // The run and its evaluation.
   std::optional<double> path_m, duration_s;
   std::optional<double> ate_m;            ///< ATE RMSE after SE(3) alignment [m]
