@@ -33,8 +33,7 @@ std::string storeyStem(int storey);
 /// created or a write fails.
 std::vector<std::string> writeStoreyFiles(
     const MapCloud& map, const std::vector<int>& storeys, const std::string& dir,
-    const StoreyFileFormats& formats,
-    const std::function<void(const std::string&)>& on_file = {});
+    const StoreyFileFormats& formats, const std::function<void(const std::string&)>& on_file = {});
 
 /// Writes the files of every storey of `map` into `dir` (created when
 /// missing), storeys in index order, LAS before PLY; returns the paths
