@@ -5,9 +5,9 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
-#include <nlohmann/json.hpp>
 
 #include "common/error.h"
+#include "export/storeys_json.h"
 
 namespace storey::eval {
 
@@ -41,30 +41,9 @@ std::vector<StoreyLevel> readTrueStoreys(const std::string& yaml_path) {
 }
 
 std::vector<StoreyLevel> readEstimatedStoreys(const std::string& json_path) {
-  std::ifstream in(json_path);
-  if (!in) throw Error(json_path + ": cannot open storeys file");
-  nlohmann::json root;
-  try {
-    root = nlohmann::json::parse(in);
-  } catch (const nlohmann::json::parse_error& e) {
-    throw Error(json_path + ": not valid JSON (byte " + std::to_string(e.byte) + ")");
-  }
-  const nlohmann::json* list = &root;
-  if (root.is_object()) {
-    if (!root.contains("storeys")) throw Error(json_path + ": expected a 'storeys' array");
-    list = &root["storeys"];
-  }
-  if (!list->is_array()) throw Error(json_path + ": 'storeys' is not an array");
   std::vector<StoreyLevel> storeys;
-  for (std::size_t i = 0; i < list->size(); ++i) {
-    const nlohmann::json& entry = (*list)[i];
-    const std::string where = json_path + ": storeys[" + std::to_string(i) + "]";
-    if (!entry.is_object() || !entry.contains("index") || !entry.contains("floor_elevation"))
-      throw Error(where + ": needs 'index' and 'floor_elevation'");
-    if (!entry["index"].is_number_integer() || !entry["floor_elevation"].is_number())
-      throw Error(where + ": 'index' must be an integer and 'floor_elevation' a number");
-    storeys.push_back({entry["index"].get<int>(), entry["floor_elevation"].get<double>()});
-  }
+  for (const StoreyInfo& s : readStoreysJson(json_path))
+    storeys.push_back({s.index, s.floor_elevation});
   return storeys;
 }
 

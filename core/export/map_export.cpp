@@ -3,56 +3,17 @@
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
-#include <nlohmann/json.hpp>
 #include <regex>
 
 #include "common/atomic_file.h"
 #include "common/error.h"
 #include "export/point_cloud_writers.h"
 #include "export/storey_files.h"
+#include "export/storeys_json.h"
 
 namespace storey {
 
 namespace fs = std::filesystem;
-
-namespace {
-
-nlohmann::json optionalNumber(const std::optional<double>& v) {
-  return v ? nlohmann::json(*v) : nlohmann::json(nullptr);
-}
-
-}  // namespace
-
-nlohmann::json storeyTableJson(const std::vector<StoreyInfo>& storeys) {
-  nlohmann::json list = nlohmann::json::array();
-  for (const StoreyInfo& s : storeys) {
-    nlohmann::json polygon = nlohmann::json::array();
-    for (const Eigen::Vector2d& p : s.footprint) polygon.push_back({p.x(), p.y()});
-    const std::string stem = storeyStem(s.index);
-    list.push_back({{"index", s.index},
-                    {"floor_elevation", s.floor_elevation},
-                    {"ceiling_elevation", optionalNumber(s.ceiling_elevation)},
-                    {"clear_height", optionalNumber(s.clear_height)},
-                    {"height", optionalNumber(s.height)},
-                    {"area", s.footprint_area},
-                    {"floor_area_detected", s.floor_area_detected},
-                    {"points", s.points},
-                    {"stair_points", s.stair_points},
-                    {"files", {"storeys/" + stem + ".las", "storeys/" + stem + ".ply"}},
-                    {"footprint", polygon}});
-  }
-  return list;
-}
-
-std::string storeysJson(const std::vector<StoreyInfo>& storeys, double map_voxel_size) {
-  nlohmann::json root;
-  root["format"] = "storey-storeys";
-  root["version"] = 1;
-  root["frame"] = "world: gravity-aligned, z up, origin at the LiDAR's start; metres";
-  root["map_voxel_size_m"] = map_voxel_size;
-  root["storeys"] = storeyTableJson(storeys);
-  return root.dump(2) + "\n";
-}
 
 std::vector<std::string> writeMapFiles(const std::string& out_dir, const MapCloud& map,
                                        const StoreySegmentation& segmentation,

@@ -7,7 +7,6 @@
 ///
 /// Each file is written atomically. Writers only: the map is built by
 /// core/map and segmented by core/storeys before.
-#include <nlohmann/json_fwd.hpp>
 #include <string>
 #include <vector>
 
@@ -23,10 +22,5 @@ namespace storey {
 std::vector<std::string> writeMapFiles(const std::string& out_dir, const MapCloud& map,
                                        const StoreySegmentation& storeys, double map_voxel_size,
                                        const ProgressFn& progress = {});
-
-/// storeys.json text (format in docs/outputs.md; core/eval reads it).
-std::string storeysJson(const std::vector<StoreyInfo>& storeys, double map_voxel_size);
-/// The storey table as storeys.json lists it (the run report shows it too).
-nlohmann::json storeyTableJson(const std::vector<StoreyInfo>& storeys);
 
 }  // namespace storey

@@ -4,7 +4,7 @@
 #include <optional>
 
 #include "common/statistics.h"
-#include "export/map_export.h"
+#include "export/storeys_json.h"
 #include "trajectory/drift.h"
 
 namespace storey {

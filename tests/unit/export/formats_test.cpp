@@ -19,6 +19,7 @@
 #include "export/map_export.h"
 #include "export/point_cloud_writers.h"
 #include "export/report_markdown.h"
+#include "export/storeys_json.h"
 #include "export_fixtures.h"
 #include "pipeline/run_report.h"
 #include "support/temp_dir.h"
@@ -133,6 +134,26 @@ TEST(StoreysJson, ReadByCoreEval) {
   EXPECT_DOUBLE_EQ(j["storeys"][0]["area"].get<double>(), 120.5);
   EXPECT_EQ(j["storeys"][0]["footprint"].size(), 4u);
   EXPECT_EQ(j["storeys"][0]["footprint"][2][1].get<double>(), 12.0);
+}
+
+TEST(StoreysJson, TheOneReaderReadsBackWhatTheWriterWrote) {
+  test::TempDir dir;
+  const std::vector<StoreyInfo> written = sampleStoreys();
+  const std::string path = dir.write("storeys.json", storeysJson(written, 0.02));
+  const std::vector<StoreyInfo> read = readStoreysJson(path);
+  ASSERT_EQ(read.size(), written.size());
+  for (std::size_t i = 0; i < read.size(); ++i) {
+    EXPECT_EQ(read[i].index, written[i].index);
+    EXPECT_EQ(read[i].floor_elevation, written[i].floor_elevation);
+    EXPECT_EQ(read[i].ceiling_elevation, written[i].ceiling_elevation);
+    EXPECT_EQ(read[i].clear_height, written[i].clear_height);
+    EXPECT_EQ(read[i].height, written[i].height);
+    EXPECT_EQ(read[i].footprint_area, written[i].footprint_area);
+    EXPECT_EQ(read[i].points, written[i].points);
+    EXPECT_EQ(read[i].footprint, written[i].footprint);
+  }
+  EXPECT_EQ(storeysJson(read, 0.02), storeysJson(written, 0.02));
+  EXPECT_THROW(parseStoreysJson("{\"storeys\": [{\"index\": 1}]}", "s.json"), Error);
 }
 
 TEST(ReportMarkdown, TablesFromTheRunReport) {
