@@ -18,6 +18,16 @@ double mm(double v) {
   return std::round(v * 1000.0) / 1000.0;
 }
 
+/// `motion`'s robot defaults, keeping where the walk goes: the lanes, the
+/// start and the still time of `robot`.
+RobotSpec withMotion(const RobotSpec& robot, RobotMotion motion) {
+  RobotSpec moved = robotForMotion(motion);
+  moved.lane_offset = robot.lane_offset;
+  moved.start_offset = robot.start_offset;
+  moved.still_time = robot.still_time;
+  return moved;
+}
+
 int uniformInt(Random& rng, int lo, int hi) {
   return lo + static_cast<int>(std::floor(rng.uniform() * (hi - lo + 1)));
 }
@@ -142,10 +152,7 @@ BuildingSpec draw(std::uint64_t seed, std::uint64_t attempt) {
   sensors.imu.orientation = rng.uniform() < 0.5;
   if (rng.uniform() < 0.4) {
     // A person walking with the sensors in hand: a person's speeds and gait.
-    RobotSpec handheld = robotForMotion(RobotMotion::kHandheld);
-    handheld.lane_offset = r.lane_offset;
-    handheld.start_offset = r.start_offset;
-    handheld.still_time = r.still_time;
+    RobotSpec handheld = withMotion(r, RobotMotion::kHandheld);
     handheld.walk_speed = mm(rng.uniform(0.8, 1.3));
     handheld.stair_speed = mm(rng.uniform(0.4, 0.6));
     handheld.max_yaw_rate = mm(rng.uniform(60.0, 90.0)) * kDeg;
@@ -212,11 +219,7 @@ void applyRigOverrides(BuildingSpec& spec, const RigOverrides& o) {
       throw Error(std::string("--motion: ") + e.what());
     }
     if (motion != spec.robot.motion) {
-      RobotSpec robot = robotForMotion(motion);
-      robot.lane_offset = spec.robot.lane_offset;
-      robot.start_offset = spec.robot.start_offset;
-      robot.still_time = spec.robot.still_time;
-      spec.robot = robot;
+      spec.robot = withMotion(spec.robot, motion);
     }
   }
 }
