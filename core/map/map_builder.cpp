@@ -64,13 +64,6 @@ MapBuilder::~MapBuilder() {
   if (file_) std::fclose(file_);
 }
 
-std::vector<int> MapBuilder::mapScans() const {
-  std::vector<int> out;
-  out.reserve(entries_.size());
-  for (const Entry& e : entries_) out.push_back(e.map_scan);
-  return out;
-}
-
 void MapBuilder::addScan(int map_scan, const Scan& scan, int keyframe) {
   if (map_scan < 0) throw Error("map: scan index must be >= 0, got " + std::to_string(map_scan));
   if (static_cast<std::size_t>(map_scan) >= entry_of_scan_.size())

@@ -64,8 +64,6 @@ class MapBuilder {
 
   const MapBuildStats& stats() const { return stats_; }
   const MapConfig& config() const { return config_; }
-  /// Map scan indices in the order they were added.
-  std::vector<int> mapScans() const;
 
  private:
   struct StoredPoint {
