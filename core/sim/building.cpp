@@ -50,28 +50,57 @@ struct StairStorey {
   double landing_z = 0.0;   ///< half landing height above the storey floor [m]
 };
 
+/// What a Generator builds: the whole building, or one of its arms (a
+/// corridor with rooms, no stairs, open at its west end, no route) in the
+/// arm's own frame.
+enum class Part { kBuilding, kArm };
+
+/// An arm's place along the main corridor.
+struct ArmLayout {
+  double x = 0.0;       ///< its axis [m]
+  double half = 0.0;    ///< half its width, rooms included (to the outer walls' centrelines) [m]
+  double length = 0.0;  ///< from the main corridor's south wall line [m]
+};
+
 class Generator {
  public:
-  explicit Generator(const BuildingSpec& spec)
-      : spec_(spec), b_(spec.building), rng_(spec.seed, 0x5eed0001ULL) {}
+  explicit Generator(const BuildingSpec& spec, Part part = Part::kBuilding,
+                     std::uint64_t stream = 0x5eed0001ULL)
+      : spec_(spec),
+        b_(spec.building),
+        part_(part),
+        rng_(spec.seed, stream),
+        route_rng_(spec.seed, 0x726f7574ULL) {}  // "rout"
 
   Building run() {
     layout();
     for (int k = 0; k <= storeyCount(); ++k) addSlab(k);
     for (int k = 0; k < storeyCount(); ++k) {
+      storey_ = k;
       addStoreyWalls(k);
       addCorridorClutter(k);
       addRoomFurniture(k);
-      if (k + 1 < storeyCount()) addStairs(k);
+      if (hasStairs() && k + 1 < storeyCount()) addStairs(k);
       out_.storeys.push_back({k, z_[k], z_[k + 1] - b_.slab_thickness});
     }
-    addRoute();
+    if (part_ == Part::kBuilding) {
+      addArms();
+      addRoute();
+    }
     return std::move(out_);
   }
 
  private:
+  struct Room {
+    double x0, x1;        ///< partition wall centrelines
+    double door0, door1;  ///< door opening along x
+    bool glass_front;
+    bool atrium = false;  ///< part of the atrium (south side only)
+    bool north = false;   ///< on the north side of the corridor
+  };
+
   int storeyCount() const { return static_cast<int>(b_.storey_heights.size()); }
-  bool hasStairs() const { return storeyCount() > 1; }
+  bool hasStairs() const { return part_ == Part::kBuilding && storeyCount() > 1; }
 
   void layout() {
     z_.assign(1, 0.0);
@@ -106,12 +135,23 @@ class Generator {
     x_turn_west_ = wt_ / 2 + kEndClearance;
     x_turn_east_ = L_ - wt_ / 2 - kEndClearance;
     x_start_ = std::max(spec_.robot.start_offset, x_turn_west_ + 1.2);
-    if (x_start_ > std::min(x_turn_east_, hasStairs() ? x_west_lane_ : x_turn_east_) - 1.5)
+    if (part_ == Part::kBuilding &&
+        x_start_ > std::min(x_turn_east_, hasStairs() ? x_west_lane_ : x_turn_east_) - 1.5)
       throw Error(spec_.source +
                   ": key 'robot.start_offset' leaves no room to walk east of the start");
+    if (b_.single_loaded) y_south_ = -yc_;
+    layoutArms();
 
-    // Rooms: south side over the whole corridor, north side on both sides of the stairwell.
-    splitRooms(0.0, L_, south_rooms_);
+    // Rooms: south side over the corridor but for the arms (none when single
+    // loaded), north side on both sides of the stairwell.
+    if (!b_.single_loaded) {
+      double x0 = 0.0;
+      for (const ArmLayout& arm : arms_) {
+        splitRooms(x0, arm.x - arm.half, south_rooms_);
+        x0 = arm.x + arm.half;
+      }
+      splitRooms(x0, L_, south_rooms_);
+    }
     if (hasStairs()) {
       splitRooms(0.0, xs_ - half, north_rooms_);
       splitRooms(xs_ + half, L_, north_rooms_);
@@ -120,6 +160,7 @@ class Generator {
     }
     for (auto* rooms : {&south_rooms_, &north_rooms_}) {
       for (Room& r : *rooms) {
+        r.north = rooms == &north_rooms_;
         const double w = r.x1 - r.x0;
         const double offset = std::max(0.45, 0.25 * w - b_.door_width / 2);
         r.door0 = r.x0 + wt_ / 2 + offset;
@@ -140,12 +181,52 @@ class Generator {
         throw Error(spec_.source + ": key 'building.partition_angle_deg' is too oblique for " +
                     "rooms this deep and narrow (the partitions would cross)");
     }
+    chooseEnteredRooms();
+  }
+
+  /// Half the width of the loop the walk makes inside `r`: it keeps 0.95 m
+  /// from the partitions (a cabinet 0.5 m deep and the sensors' reach), more
+  /// where they lean (a cabinet moves along with them over its depth).
+  double roomLoopHalfWidth(const Room& r) const {
+    return (r.x1 - r.x0 - wt_) / 2 - 0.95 - 2.0 * std::abs(cot_);
+  }
+
+  /// The rooms the walk goes into on each storey: robot.rooms_entered of
+  /// those whose doors are on the corridor the walk covers (not the atrium),
+  /// drawn from their own random stream (the building's draw is unchanged).
+  void chooseEnteredRooms() {
+    entered_.assign(storeyCount(), {});
+    if (part_ != Part::kBuilding || spec_.robot.rooms_entered == 0) return;
+    const double x_hi = !hasStairs() || b_.wings == 2 ? x_turn_east_ : x_west_lane_;
+    std::vector<const Room*> eligible;
+    for (const auto* rooms : {&south_rooms_, &north_rooms_})
+      for (const Room& r : *rooms) {
+        const double door = (r.door0 + r.door1) / 2;
+        // The loop reaches 1.5 m past the wall's face; the desk is 0.75 m deep.
+        const bool deep_enough = b_.room_depth - wt_ >= 2.75;
+        if (!r.atrium && deep_enough && roomLoopHalfWidth(r) >= 0.1 && door > x_turn_west_ + 0.6 &&
+            door < x_hi - 0.6)
+          eligible.push_back(&r);
+      }
+    for (int k = 0; k < storeyCount(); ++k) {
+      std::vector<const Room*> pool = eligible;
+      for (int i = 0; i < spec_.robot.rooms_entered && !pool.empty(); ++i) {
+        const auto pick = static_cast<std::size_t>(route_rng_.uniform() * pool.size());
+        entered_[k].push_back(pool[std::min(pick, pool.size() - 1)]);
+        pool.erase(pool.begin() + static_cast<std::ptrdiff_t>(std::min(pick, pool.size() - 1)));
+      }
+    }
+  }
+
+  bool entered(int k, const Room& r) const {
+    return std::find(entered_[k].begin(), entered_[k].end(), &r) != entered_[k].end();
   }
 
   /// Whether the boundary of a room at x (its x0 or x1) is a partition that
   /// leans, rather than an end wall or a stairwell wall.
   bool leans(bool north, double x) const {
     if (cot_ == 0.0 || x <= 1e-9 || x >= L_ - 1e-9) return false;
+    if (!north && atArmEdge(x)) return false;
     if (north && hasStairs() &&
         (std::abs(x - (xs_ - b_.stairwell.width / 2)) < 1e-9 ||
          std::abs(x - (xs_ + b_.stairwell.width / 2)) < 1e-9))
@@ -183,12 +264,19 @@ class Generator {
     int first = 0;
     double best = 1e300;
     for (int i = 0; i + a.rooms <= n; ++i) {
+      bool adjacent = true;  // not across an arm
+      for (int j = i + 1; j < i + a.rooms; ++j)
+        adjacent = adjacent && std::abs(south_rooms_[j].x0 - south_rooms_[j - 1].x1) < 1e-9;
+      if (!adjacent) continue;
       const double mid = (south_rooms_[i].x0 + south_rooms_[i + a.rooms - 1].x1) / 2;
       if (std::abs(mid - centre) < best) {
         best = std::abs(mid - centre);
         first = i;
       }
     }
+    if (best == 1e300)
+      throw Error(spec_.source + ": key 'building.atrium.rooms' (" + std::to_string(a.rooms) +
+                  ") finds no run of that many adjacent south rooms between the arms");
     for (int i = first; i < first + a.rooms; ++i) south_rooms_[i].atrium = true;
     atrium_x0_ = south_rooms_[first].x0;
     atrium_x1_ = south_rooms_[first + a.rooms - 1].x1;
@@ -196,12 +284,56 @@ class Generator {
 
   bool hasAtrium() const { return b_.atrium.rooms > 0; }
 
-  struct Room {
-    double x0, x1;        ///< partition wall centrelines
-    double door0, door1;  ///< door opening along x
-    bool glass_front;
-    bool atrium = false;  ///< part of the atrium (south side only)
-  };
+  /// The arms along the corridor, west to east; refuses arms that do not fit
+  /// or overlap.
+  void layoutArms() {
+    const ArmsSpec& a = b_.arms;
+    for (std::size_t i = 0; i < a.positions.size(); ++i) {
+      ArmLayout arm;
+      arm.half = yc_ + b_.room_depth;
+      arm.length = a.lengths[i];
+      if (L_ < 2 * arm.half)
+        throw Error(spec_.source + ": key 'building.arms.positions': an arm (" +
+                    std::to_string(2 * arm.half) + " m wide with its rooms) is wider than " +
+                    "the corridor is long");
+      arm.x = std::clamp(a.positions[i] * L_, arm.half, L_ - arm.half);
+      if (arm.length < b_.room_depth + 2 * kEndClearance + 2.0)
+        throw Error(spec_.source + ": key 'building.arms.lengths' is too short to walk into");
+      arms_.push_back(arm);
+    }
+    std::sort(arms_.begin(), arms_.end(),
+              [](const ArmLayout& l, const ArmLayout& r) { return l.x < r.x; });
+    for (std::size_t i = 1; i < arms_.size(); ++i)
+      if (arms_[i].x - arms_[i].half < arms_[i - 1].x + arms_[i - 1].half - 1e-9)
+        throw Error(spec_.source + ": key 'building.arms.positions': two arms overlap");
+  }
+
+  /// Whether x is on an arm's outer wall (the edge of its span).
+  bool atArmEdge(double x) const {
+    for (const ArmLayout& arm : arms_)
+      if (std::abs(x - (arm.x - arm.half)) < 1e-9 || std::abs(x - (arm.x + arm.half)) < 1e-9)
+        return true;
+    return false;
+  }
+
+  /// Each arm, built in its own frame (x along it, from the main corridor's
+  /// south wall), turned to point south and moved to its place.
+  void addArms() {
+    for (std::size_t i = 0; i < arms_.size(); ++i) {
+      BuildingSpec arm_spec = spec_;
+      BuildingLayoutSpec& a = arm_spec.building;
+      a.corridor_length = arms_[i].length;
+      a.wings = 1;
+      a.single_loaded = false;
+      a.partition_angle = M_PI / 2;
+      a.atrium = AtriumSpec{};
+      a.arms = ArmsSpec{};
+      const Building arm = Generator(arm_spec, Part::kArm, 0x61726d00ULL + i).run();  // "arm"
+      Eigen::Matrix3d R_main_arm;
+      R_main_arm << 0, 1, 0, -1, 0, 0, 0, 0, 1;  // arm x -> main -y, arm y -> main x
+      out_.mesh.append(arm.mesh, R_main_arm, Vector3d(arms_[i].x, -yc_, 0.0));
+    }
+  }
 
   void splitRooms(double x0, double x1, std::vector<Room>& rooms) {
     const double length = x1 - x0;
@@ -284,11 +416,22 @@ class Generator {
       }
       return o;
     };
-    addWall(true, y_south_, -wt_ / 2, L_ + wt_ / 2, z0, z1, windows(south_rooms_, false));
+    if (!b_.single_loaded) {
+      // The south outer wall, but where the arms leave.
+      const std::vector<Opening> south_windows = windows(south_rooms_, false);
+      double x0 = -wt_ / 2;
+      for (const ArmLayout& arm : arms_) {
+        addWall(true, y_south_, x0, arm.x - arm.half, z0, z1, south_windows);
+        x0 = arm.x + arm.half;
+      }
+      addWall(true, y_south_, x0, L_ + wt_ / 2, z0, z1, south_windows);
+    }
     addWall(true, y_north_, -wt_ / 2, L_ + wt_ / 2, z0, z1, windows(north_rooms_, true));
     const double glass_top = std::min(zf + 2.5, ceiling - 0.15);
     const std::vector<Opening> corridor_end{{-yc_ + 0.35, yc_ - 0.35, zf + 0.05, glass_top, true}};
-    addWall(false, 0.0, y_south_ + wt_ / 2, y_north_ - wt_ / 2, z0, z1, corridor_end);
+    // An arm is open at its west end, to the main corridor.
+    if (part_ != Part::kArm)
+      addWall(false, 0.0, y_south_ + wt_ / 2, y_north_ - wt_ / 2, z0, z1, corridor_end);
     addWall(false, L_, y_south_ + wt_ / 2, y_north_ - wt_ / 2, z0, z1, corridor_end);
 
     // Corridor walls: doors, glass fronts, the stairwell entrance.
@@ -310,6 +453,20 @@ class Generator {
     if (hasStairs())
       north.push_back({xs_ - half + wt_ / 2, xs_ + half - wt_ / 2, zf, zf + 2.3, false});
     std::vector<Opening> south = corridorOpenings(south_rooms_);
+    if (b_.single_loaded) {
+      // The corridor's south wall is an outer wall: windows at room spacing, but not onto the arms.
+      const int count = std::max(1, static_cast<int>(std::lround(L_ / b_.room_width)));
+      for (int i = 0; i < count; ++i) {
+        const double m = L_ * (i + 0.5) / count;
+        const double w0 = m - b_.window_width / 2, w1 = m + b_.window_width / 2;
+        bool onto_arm = false;
+        for (const ArmLayout& arm : arms_)
+          onto_arm = onto_arm || (w1 > arm.x - arm.half - 0.1 && w0 < arm.x + arm.half + 0.1);
+        if (!onto_arm) south.push_back({w0, w1, window_z0, window_z1, true});
+      }
+    }
+    for (const ArmLayout& arm : arms_)  // into the arm's corridor
+      south.push_back({arm.x - yc_ + wt_ / 2, arm.x + yc_ - wt_ / 2, zf, z1, false});
     if (hasAtrium()) {
       // Open to the hall on the ground floor; above it a balustrade: a solid
       // parapet (the wall below the opening) or a glass pane in the opening.
@@ -328,6 +485,7 @@ class Generator {
     // Partitions between rooms.
     for (std::size_t i = 1; i < south_rooms_.size(); ++i) {
       if (south_rooms_[i - 1].atrium && south_rooms_[i].atrium) continue;  // inside the atrium
+      if (std::abs(south_rooms_[i].x0 - south_rooms_[i - 1].x1) > 1e-9) continue;  // an arm's wall
       addPartition(false, south_rooms_[i].x0, z0, z1);
     }
     for (std::size_t i = 1; i < north_rooms_.size(); ++i) {
@@ -362,6 +520,10 @@ class Generator {
         x0 < xs_ + b_.stairwell.width / 2 + 0.2)
       return false;
     if (!north && hasAtrium() && x1 > atrium_x0_ - 0.2 && x0 < atrium_x1_ + 0.2) return false;
+    for (const ArmLayout& arm : arms_)  // clear of the turn into the arm
+      if (!north && x1 > arm.x - yc_ - 0.6 && x0 < arm.x + yc_ + 0.6) return false;
+    for (const Room* room : entered_[storey_])  // clear of the walk through the door
+      if (room->north == north && x1 > room->door0 - 0.8 && x0 < room->door1 + 0.8) return false;
     return true;
   }
 
@@ -442,18 +604,27 @@ class Generator {
         const double cy = rng_.uniform(y_near + 1.3, std::max(y_near + 1.35, y_far - 1.8));
         box2(side, cx0, cx0 + 0.5, cy, cy + rng_.uniform(0.8, 1.6), zf, zf + rng_.uniform(1.6, 2.1),
              rng_.uniform(20.0, 90.0));
-        // A chair-sized box and a round bin.
+        // A chair-sized box and a round bin; in a room the walk enters, no
+        // chair and the bin in the corner away from the door (same draws).
+        const bool walked_in = entered(k, r);
         const double chx = rng_.uniform(rx0 + 0.8, std::max(rx0 + 0.85, rx1 - 0.8));
-        box2(side, chx - 0.25, chx + 0.25, y_far - 1.4, y_far - 0.9, zf, zf + 0.9,
-             rng_.uniform(20.0, 60.0));
+        const double chair_reflectivity = rng_.uniform(20.0, 60.0);
+        if (!walked_in)
+          box2(side, chx - 0.25, chx + 0.25, y_far - 1.4, y_far - 0.9, zf, zf + 0.9,
+               chair_reflectivity);
         const double by = y_near + 0.45;
-        const double bx =
-            rng_.uniform(rx0 + 0.4, std::max(rx0 + 0.45, rx1 - 0.4)) +
-            (boundaryAt(north, r.x0, by) - r.x0 + boundaryAt(north, r.x1, by) - r.x1) / 2;
+        const double bin_x = rng_.uniform(rx0 + 0.4, std::max(rx0 + 0.45, rx1 - 0.4));
+        const double bx = (walked_in ? rx1 - 0.35 : bin_x) + leanShift(r, by);
         out_.mesh.addCylinder(Vector2d(bx, side * by), 0.16, zf, zf + 0.55, 12, Surface::kClutter,
                               static_cast<float>(rng_.uniform(20.0, 90.0)));
       }
     }
+  }
+
+  /// How far the partitions of `r` have moved along x at distance `y` from
+  /// the corridor axis (their mean; 0 without leaning partitions).
+  double leanShift(const Room& r, double y) const {
+    return (boundaryAt(r.north, r.x0, y) - r.x0 + boundaryAt(r.north, r.x1, y) - r.x1) / 2;
   }
 
   /// Box in room coordinates: y measured from the corridor axis on `side`.
@@ -520,38 +691,110 @@ class Generator {
 
   // ---- route ----------------------------------------------------------------
 
+  /// A side trip off a corridor lane, at `x` along it: into an arm or a room.
+  struct Detour {
+    double x = 0.0;
+    const ArmLayout* arm = nullptr;
+    const Room* room = nullptr;
+  };
+
+  std::vector<Detour> detoursOf(int k) const {
+    std::vector<Detour> d;
+    for (const ArmLayout& arm : arms_) d.push_back({arm.x, &arm, nullptr});
+    for (const Room* room : entered_[k])
+      d.push_back({(room->door0 + room->door1) / 2, nullptr, room});
+    return d;
+  }
+
+  void at(double x, double y, double z, double speed) {
+    out_.route.push_back({Vector3d(x, y, z), speed});
+  }
+
+  /// Walks along the lane at y from where the route is to x_to, taking the
+  /// side trips of pending_ that lie on the way (each once).
+  void along(double x_to, double y, double z) {
+    const double x_from = out_.route.back().p.x(), dir = x_to >= x_from ? 1.0 : -1.0;
+    std::vector<Detour> here;
+    for (auto it = pending_.begin(); it != pending_.end();) {
+      if ((it->x - x_from) * dir > 0.0 && (x_to - it->x) * dir > 0.0) {
+        here.push_back(*it);
+        it = pending_.erase(it);
+      } else {
+        ++it;
+      }
+    }
+    std::sort(here.begin(), here.end(),
+              [&](const Detour& l, const Detour& r) { return (l.x - r.x) * dir < 0.0; });
+    for (const Detour& d : here) {
+      if (d.arm != nullptr)
+        armTrip(*d.arm, dir, y, z);
+      else
+        roomTrip(*d.room, y, z);
+    }
+    at(x_to, y, z, spec_.robot.walk_speed);
+  }
+
+  /// Down the arm on one lane, round its end, back on the other.
+  void armTrip(const ArmLayout& arm, double dir, double y, double z) {
+    const double lane = spec_.robot.lane_offset, walk = spec_.robot.walk_speed;
+    const double y_end = -yc_ - (arm.length - wt_ / 2 - kEndClearance);
+    at(arm.x - dir * lane, y, z, walk);
+    at(arm.x - dir * lane, y_end, z, walk);
+    at(arm.x + dir * lane, y_end, z, walk);
+    at(arm.x + dir * lane, y, z, walk);
+  }
+
+  /// Through the door, a loop round the middle of the room, out again.
+  void roomTrip(const Room& r, double y, double z) {
+    const double walk = spec_.robot.walk_speed, side = r.north ? 1.0 : -1.0;
+    const double door = (r.door0 + r.door1) / 2, centre = (r.x0 + r.x1) / 2;
+    const double half = std::min(0.5, roomLoopHalfWidth(r));
+    const double y_in = yc_ + wt_ / 2 + 0.6, y_loop = y_in + 0.9;  // from the corridor axis
+    at(door, y, z, walk);
+    at(door + leanShift(r, y_in), side * y_in, z, walk);
+    at(centre + half + leanShift(r, y_loop), side * y_loop, z, walk);
+    at(centre - half + leanShift(r, y_loop), side * y_loop, z, walk);
+    at(door + leanShift(r, y_in), side * y_in, z, walk);
+    at(door, y, z, walk);
+  }
+
   void addRoute() {
     const RobotSpec& robot = spec_.robot;
     const double lane = robot.lane_offset;
     const double walk = robot.walk_speed, climb = robot.stair_speed;
-    auto at = [&](double x, double y, double z, double speed) {
-      out_.route.push_back({Vector3d(x, y, z), speed});
-    };
     auto floorZ = [&](int k) { return z_[k] + robot.body_height; };
     const int top = storeyCount() - 1;
     const double y_turn = yc_ + b_.stairwell.floor_landing_depth / 2;  // U-turns on floor landings
 
+    pending_ = detoursOf(0);
     at(x_start_, lane, floorZ(0), walk);
     if (!hasStairs()) {
-      at(x_turn_east_, lane, floorZ(0), walk);
+      along(x_turn_east_, lane, floorZ(0));
       at(x_turn_east_, -lane, floorZ(0), walk);
-      at(x_turn_west_, -lane, floorZ(0), walk);
+      along(x_turn_west_, -lane, floorZ(0));
       at(x_turn_west_, lane, floorZ(0), walk);
-      at(x_start_, lane, floorZ(0), walk);
+      along(x_start_, lane, floorZ(0));
       return;
     }
-    // Ground floor: east along the north lane (and the east wing), then up.
+    // The walk on a storey goes round the east end too when there is a wing
+    // or an arm east of the stairs.
+    bool east_loop = b_.wings == 2;
+    // (The top storey's walk ends at the west flight, the others' at the east one.)
+    for (const ArmLayout& arm : arms_) east_loop = east_loop || arm.x >= x_west_lane_;
+    // Ground floor: east along the north lane (and round the east end), then up.
     double lane_to_stairs = lane;
-    if (b_.wings == 2) {
-      at(x_turn_east_, lane, floorZ(0), walk);
+    if (east_loop) {
+      along(x_turn_east_, lane, floorZ(0));
       at(x_turn_east_, -lane, floorZ(0), walk);
       lane_to_stairs = -lane;
     }
+    std::vector<Detour> ground_left;
     for (int k = 0; k < top; ++k) {
       const StairStorey& st = stairs_[k];
       const double zf = floorZ(k), zl = zf + st.landing_z, zn = floorZ(k + 1);
       const double y_landing = (y_flights_ + st.run_first + y_back_ - wt_ / 2) / 2;
-      at(x_east_lane_, lane_to_stairs, zf, walk);
+      along(x_east_lane_, lane_to_stairs, zf);
+      if (k == 0) ground_left = std::move(pending_);
       at(x_east_lane_, y_flights_, zf, climb);
       at(x_east_lane_, y_flights_ + st.run_first, zl, walk);
       at(x_east_lane_, y_landing, zl, walk);
@@ -559,12 +802,13 @@ class Generator {
       at(x_west_lane_, y_flights_ + st.run_second, zl, climb);
       at(x_west_lane_, y_flights_, zn, walk);
       // Storey k+1: out to the south lane, west wing, back east.
+      pending_ = detoursOf(k + 1);
       at(x_west_lane_, -lane, zn, walk);
-      at(x_turn_west_, -lane, zn, walk);
+      along(x_turn_west_, -lane, zn);
       at(x_turn_west_, lane, zn, walk);
       lane_to_stairs = lane;
-      if (b_.wings == 2) {
-        at(x_turn_east_, lane, zn, walk);
+      if (east_loop) {
+        along(x_turn_east_, lane, zn);
         at(x_turn_east_, -lane, zn, walk);
         lane_to_stairs = -lane;
       }
@@ -575,7 +819,8 @@ class Generator {
       const StairStorey& st = stairs_[k];
       const double zf = floorZ(k), zl = zf + st.landing_z, zn = floorZ(k + 1);
       const double y_landing = (y_flights_ + st.run_first + y_back_ - wt_ / 2) / 2;
-      at(x_west_lane_, y_entry, zn, walk);
+      along(x_west_lane_, y_entry, zn);
+      pending_.clear();
       at(x_west_lane_, y_flights_, zn, climb);
       at(x_west_lane_, y_flights_ + st.run_second, zl, walk);
       at(x_west_lane_, y_landing, zl, walk);
@@ -588,15 +833,18 @@ class Generator {
       }
     }
     // Ground floor: to the south lane, round the west end, back to the start.
+    pending_ = std::move(ground_left);
     at(x_east_lane_, -lane, floorZ(0), walk);
-    at(x_turn_west_, -lane, floorZ(0), walk);
+    along(x_turn_west_, -lane, floorZ(0));
     at(x_turn_west_, lane, floorZ(0), walk);
-    at(x_start_, lane, floorZ(0), walk);
+    along(x_start_, lane, floorZ(0));
   }
 
   const BuildingSpec& spec_;
   const BuildingLayoutSpec& b_;
+  Part part_;
   Random rng_;
+  Random route_rng_;  ///< which rooms the walk enters
   Building out_;
   std::vector<double> z_;  ///< floor top of storey k; z_[N] = roof top
   std::vector<StairStorey> stairs_;
@@ -607,6 +855,10 @@ class Generator {
   double atrium_x0_ = 0, atrium_x1_ = 0;  ///< partition centrelines at the atrium's ends
   double cot_ = 0.0;            ///< cot(partition angle): x offset per metre away from the corridor
   const Room* room_ = nullptr;  ///< the room box2() furnishes
+  std::vector<ArmLayout> arms_;                    ///< west to east
+  std::vector<std::vector<const Room*>> entered_;  ///< per storey, the rooms the walk enters
+  int storey_ = 0;                                 ///< the storey being built
+  std::vector<Detour> pending_;  ///< side trips of the storey being walked, not yet taken
   bool room_north_ = false;
 };
 

@@ -118,6 +118,7 @@ void visitLayout(V& v, BuildingLayoutSpec& b) {
   v.field("room_depth", b.room_depth);
   v.field("room_width", b.room_width);
   v.field("wings", b.wings);
+  v.field("single_loaded", b.single_loaded);
   v.field("door_width", b.door_width);
   v.field("door_height", b.door_height);
   v.field("window_width", b.window_width);
@@ -134,6 +135,10 @@ void visitLayout(V& v, BuildingLayoutSpec& b) {
     a.field("glass_balustrade", b.atrium.glass_balustrade);
     a.field("balustrade_height", b.atrium.balustrade_height);
   });
+  v.section("arms", [&](auto& a) {
+    a.list("positions", b.arms.positions, true);
+    a.list("lengths", b.arms.lengths, true);
+  });
 }
 
 template <typename V>
@@ -149,6 +154,7 @@ void visitRobot(V& v, RobotSpec& r) {
   v.field("lane_offset", r.lane_offset);
   v.field("still_time", r.still_time);
   v.field("start_offset", r.start_offset);
+  v.field("rooms_entered", r.rooms_entered);
   v.section("gait", [&](auto& g) {
     g.field("frequency_hz", r.gait.frequency);
     g.field("bounce", r.gait.bounce);
@@ -242,14 +248,14 @@ struct SpecReader {
       s.fail(key, e.what());
     }
   }
-  void list(const char* key, std::vector<double>& values) {
+  void list(const char* key, std::vector<double>& values, bool may_be_empty = false) {
     if (!s.has(key)) {
       s.section(key);  // mark known
       return;
     }
     std::vector<double> read;
     s.readList(key, read);
-    if (read.empty()) s.fail(key, "must be a non-empty list of numbers");
+    if (read.empty() && !may_be_empty) s.fail(key, "must be a non-empty list of numbers");
     values = std::move(read);
   }
   template <typename F>
@@ -306,7 +312,7 @@ struct SpecWriter {
     list("rotation_xyzw", {q.x(), q.y(), q.z(), q.w()});
     out << YAML::EndMap;
   }
-  void list(const char* key, const std::vector<double>& values) {
+  void list(const char* key, const std::vector<double>& values, bool /*may_be_empty*/ = false) {
     out << YAML::Key << key << YAML::Value << YAML::Flow << YAML::BeginSeq;
     for (double v : values) out << shortest(v);
     out << YAML::EndSeq;
@@ -386,6 +392,17 @@ void BuildingSpec::validate() const {
         "must be in (0, 1)");
   check(b.atrium.balustrade_height >= 0.8 && b.atrium.balustrade_height <= 1.5, *this,
         "building.atrium.balustrade_height", "must be in [0.8, 1.5] m");
+  check(!b.single_loaded || b.atrium.rooms == 0, *this, "building.atrium.rooms",
+        "must be 0 in a single-loaded building (the atrium replaces south rooms)");
+  check(b.arms.positions.size() == b.arms.lengths.size(), *this, "building.arms.lengths",
+        "must list one length per arm position");
+  check(b.arms.positions.size() <= 3, *this, "building.arms.positions", "must list at most 3 arms");
+  for (double p : b.arms.positions)
+    check(p >= 0.0 && p <= 1.0, *this, "building.arms.positions", "values must be in [0, 1]");
+  for (double l : b.arms.lengths)
+    check(l >= 6.0 && l <= 100.0, *this, "building.arms.lengths", "values must be in [6, 100] m");
+  check(robot.rooms_entered >= 0 && robot.rooms_entered <= 4, *this, "robot.rooms_entered",
+        "must be in [0, 4]");
   check(robot.walk_speed > 0.05 && robot.walk_speed <= 2.0, *this, "robot.walk_speed",
         "must be in (0.05, 2] m/s");
   check(robot.stair_speed > 0.05 && robot.stair_speed <= 1.0, *this, "robot.stair_speed",

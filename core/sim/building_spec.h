@@ -36,6 +36,18 @@ struct AtriumSpec {
   double balustrade_height = 1.1;  ///< [m]
 };
 
+/// Wings at right angles to the corridor, on its south side (the stairwell's
+/// is north): one at an end makes an L, one in the middle a T, one at each end
+/// a U. An arm is a corridor as wide as the main one with rooms as deep on
+/// both sides; it starts at the main corridor's south wall, replacing the
+/// south rooms it covers, and ends in a glazed end wall.
+struct ArmsSpec {
+  /// Where each arm's axis meets the corridor, as a fraction of its length
+  /// (0 and 1: flush with the west and east ends) [0, 1].
+  std::vector<double> positions;
+  std::vector<double> lengths;  ///< from the main corridor's south wall to the arm's end [m]
+};
+
 struct BuildingLayoutSpec {
   std::vector<double> storey_heights{3.2};  ///< floor-to-floor height of each storey, bottom up [m]
   double slab_thickness = 0.25;             ///< floor/ceiling slab [m]
@@ -45,6 +57,9 @@ struct BuildingLayoutSpec {
   double room_depth = 5.0;                  ///< rooms on both sides of the corridor [m]
   double room_width = 4.0;                  ///< nominal; rooms divide each side evenly [m]
   int wings = 1;  ///< 1: stairwell near the east end; 2: corridor wings on both sides of it
+  /// Rooms on the north side only: the corridor's south wall is an outer wall
+  /// with windows (a single-loaded corridor); no atrium then.
+  bool single_loaded = false;
   double door_width = 0.9;     ///< [m]
   double door_height = 2.1;    ///< [m]
   double window_width = 1.6;   ///< glass windows in the outer walls [m]
@@ -60,6 +75,7 @@ struct BuildingLayoutSpec {
   double partition_angle = M_PI / 2;
   StairwellSpec stairwell;
   AtriumSpec atrium;
+  ArmsSpec arms;
 };
 
 /// How the sensors are carried: the kind of walk, and the defaults of RobotSpec.
@@ -107,7 +123,10 @@ struct RobotSpec {
   double lane_offset = 0.35;        ///< walking lanes at +-offset from the corridor axis [m]
   double still_time = 2.0;          ///< standing still at start and end [s]
   double start_offset = 2.5;        ///< start position from the west end of the corridor [m]
-  GaitSpec gait;                    ///< motion kLegged
+  /// Rooms of the main corridor the walk goes into on each storey it walks
+  /// (through the door, round the middle of the room and out) [0, 4].
+  int rooms_entered = 0;
+  GaitSpec gait;  ///< motion kLegged
   /// Motion kHandheld.
   HandheldGaitSpec handheld_gait;
 };

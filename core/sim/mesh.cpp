@@ -130,6 +130,18 @@ void TriangleMesh::translate(const Eigen::Vector3d& offset) {
   for (Eigen::Vector3d& v : vertices_) v += offset;
 }
 
+void TriangleMesh::append(const TriangleMesh& other, const Eigen::Matrix3d& R,
+                          const Eigen::Vector3d& t) {
+  const auto base = static_cast<std::uint32_t>(vertices_.size());
+  vertices_.reserve(vertices_.size() + other.vertices_.size());
+  for (const Eigen::Vector3d& v : other.vertices_) vertices_.push_back(R * v + t);
+  triangles_.reserve(triangles_.size() + other.triangles_.size());
+  for (Triangle tri : other.triangles_) {
+    for (std::uint32_t& index : tri.v) index += base;
+    triangles_.push_back(tri);
+  }
+}
+
 void TriangleMesh::rotateZ(double yaw) {
   const Eigen::Matrix3d R = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix();
   for (Eigen::Vector3d& v : vertices_) v = R * v;

@@ -55,6 +55,8 @@ class TriangleMesh {
   void addPrism(const std::array<Eigen::Vector2d, 4>& footprint, double z0, double z1,
                 Surface surface, float reflectivity);
   void translate(const Eigen::Vector3d& offset);
+  /// Adds the triangles of `other`, each vertex moved to R v + t.
+  void append(const TriangleMesh& other, const Eigen::Matrix3d& R, const Eigen::Vector3d& t);
   /// Turns every vertex about the world z axis through the origin by `yaw` [rad].
   void rotateZ(double yaw);
 

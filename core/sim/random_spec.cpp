@@ -25,6 +25,7 @@ RobotSpec withMotion(const RobotSpec& robot, RobotMotion motion) {
   moved.lane_offset = robot.lane_offset;
   moved.start_offset = robot.start_offset;
   moved.still_time = robot.still_time;
+  moved.rooms_entered = robot.rooms_entered;
   return moved;
 }
 
@@ -164,6 +165,33 @@ BuildingSpec draw(std::uint64_t seed, std::uint64_t attempt) {
     g.yaw = mm(rng.uniform(1.0, 2.5)) * kDeg;
     r = handheld;
   }
+
+  // The footprint and the walk's rooms (drawn last, so the draws above are
+  // unchanged): a single-loaded corridor in a fifth of the buildings without
+  // an atrium; arms making an L, T or U in two fifths; rooms entered on every
+  // storey in half; a wide (monumental) stairwell in a sixth.
+  if (b.atrium.rooms == 0 && rng.uniform() < 0.2) b.single_loaded = true;
+  if (rng.uniform() < 0.4) {
+    const double shape = rng.uniform();
+    if (shape < 0.4) {
+      b.arms.positions = {rng.uniform() < 0.5 ? 0.0 : 1.0};  // L
+    } else if (shape < 0.7) {
+      b.arms.positions = {mm(rng.uniform(0.3, 0.7))};  // T
+    } else {
+      b.arms.positions = {0.0, 1.0};  // U
+    }
+    // The corridor is long enough for its arms and a room or two besides.
+    const double arm_width = b.corridor_width + 2 * b.room_depth;
+    b.corridor_length = mm(std::max(b.corridor_length, b.arms.positions.size() * arm_width + 5.0));
+    // Each arm reaches 5-14 m beyond the main building's rooms, less in tall
+    // buildings so that a walk stays within about 25 minutes.
+    const double reach =
+        std::clamp(120.0 / (storeys * static_cast<double>(b.arms.positions.size())), 5.0, 14.0);
+    for (std::size_t i = 0; i < b.arms.positions.size(); ++i)
+      b.arms.lengths.push_back(mm(b.room_depth + rng.uniform(5.0, reach)));
+  }
+  if (rng.uniform() < 0.5) r.rooms_entered = uniformInt(rng, 1, 2);
+  if (rng.uniform() < 1.0 / 6.0) s.width = mm(rng.uniform(4.0, 5.5));
   return spec;
 }
 

@@ -26,7 +26,8 @@ namespace {
 TEST(RandomSpec, SeedsOneToThirtyAreValidDifferAndSpread) {
   std::set<std::string> texts;
   std::set<int> storeys, wings, rates, models, grades, motions, orientation;
-  int pitched = 0;
+  int pitched = 0, single_loaded = 0, rooms_entered = 0, wide_stairs = 0;
+  std::set<std::string> footprints;  // corridor, L, T, U
   double min_slope = 90, max_slope = 0, min_height = 10, max_height = 0;
   for (std::uint64_t seed = 1; seed <= 30; ++seed) {
     const BuildingSpec spec = loadBuildingSpec("random:" + std::to_string(seed));
@@ -69,6 +70,12 @@ TEST(RandomSpec, SeedsOneToThirtyAreValidDifferAndSpread) {
     EXPECT_LE(tilt, 25.0 + 1e-9);
     pitched += tilt > 1.0;
     EXPECT_LE(spec.sensors.T_body_imu.translation().norm(), 0.3 + 1e-3);
+    single_loaded += b.single_loaded;
+    rooms_entered += spec.robot.rooms_entered > 0;
+    wide_stairs += b.stairwell.width >= 4.0;
+    const auto& arms = b.arms.positions;
+    const bool at_end = !arms.empty() && (arms[0] == 0.0 || arms[0] == 1.0);
+    footprints.insert(arms.empty() ? "corridor" : arms.size() == 2 ? "U" : at_end ? "L" : "T");
   }
   EXPECT_EQ(texts.size(), 30u) << "two seeds drew the same spec";
   EXPECT_GE(storeys.size(), 5u) << "storey counts 2-7 should almost all appear in 30 seeds";
@@ -85,6 +92,10 @@ TEST(RandomSpec, SeedsOneToThirtyAreValidDifferAndSpread) {
   EXPECT_GT(max_slope, 33.0);
   EXPECT_LT(min_height, 3.0);
   EXPECT_GT(max_height, 4.0);
+  EXPECT_EQ(footprints.size(), 4u);
+  EXPECT_GE(single_loaded, 2);
+  EXPECT_GE(rooms_entered, 8);
+  EXPECT_GE(wide_stairs, 2);
 }
 
 /// Closest surface within `range` of x (16 rays over the sphere), or range when none.
