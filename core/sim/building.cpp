@@ -3,9 +3,11 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "common/error.h"
 #include "sim/random.h"
+#include "sim/stairs.h"
 
 namespace storey::sim {
 namespace {
@@ -13,42 +15,8 @@ namespace {
 using Eigen::Vector2d;
 using Eigen::Vector3d;
 
-constexpr double kPartitionThickness = 0.1;  ///< wall between the two flights [m]
-constexpr double kLandingThickness = 0.2;    ///< half-landing slab [m]
-constexpr double kStepUnderside = 0.12;      ///< concrete below each step [m]
-constexpr double kEndClearance = 1.0;        ///< U-turn apex to the corridor end wall [m]
-constexpr double kGlassThickness = 0.02;     ///< [m]
-
-/// An opening in a wall, in wall coordinates: u along the wall, z absolute.
-struct Opening {
-  double u0, u1, z0, z1;
-  bool glass;
-};
-
-struct Rect {
-  double x0, y0, x1, y1;
-};
-
-/// `outer` minus `hole` as up to four rectangles (hole clipped to outer).
-std::vector<Rect> rectMinus(const Rect& outer, const Rect& hole) {
-  const Rect h{std::max(outer.x0, hole.x0), std::max(outer.y0, hole.y0),
-               std::min(outer.x1, hole.x1), std::min(outer.y1, hole.y1)};
-  if (h.x0 >= h.x1 || h.y0 >= h.y1) return {outer};
-  return {{outer.x0, outer.y0, outer.x1, h.y0},
-          {outer.x0, h.y1, outer.x1, outer.y1},
-          {outer.x0, h.y0, h.x0, h.y1},
-          {h.x1, h.y0, outer.x1, h.y1}};
-}
-
-/// One flight of stairs: per storey, the numbers the route and mesh share.
-struct StairStorey {
-  int risers = 0;           ///< total risers of the storey
-  int risers_first = 0;     ///< in flight 1 (up to the half landing)
-  double riser = 0.0;       ///< actual riser [m]
-  double run_first = 0.0;   ///< horizontal run of flight 1 [m]
-  double run_second = 0.0;  ///< of flight 2 [m]
-  double landing_z = 0.0;   ///< half landing height above the storey floor [m]
-};
+constexpr double kEndClearance = 1.0;     ///< U-turn apex to the corridor end wall [m]
+constexpr double kGlassThickness = 0.02;  ///< [m]
 
 /// What a Generator builds: the whole building, or one of its arms (a
 /// corridor with rooms, no stairs, open at its west end, no route) in the
@@ -80,7 +48,7 @@ class Generator {
       addStoreyWalls(k);
       addCorridorClutter(k);
       addRoomFurniture(k);
-      if (hasStairs() && k + 1 < storeyCount()) addStairs(k);
+      if (hasStairs() && k + 1 < storeyCount()) stairs_->addFlights(k, out_.mesh);
       out_.storeys.push_back({k, z_[k], z_[k + 1] - b_.slab_thickness});
     }
     if (part_ == Part::kBuilding) {
@@ -108,35 +76,14 @@ class Generator {
     L_ = b_.corridor_length;
     yc_ = b_.corridor_width / 2;
     wt_ = b_.wall_thickness;
-    const StairwellSpec& s = b_.stairwell;
-    double run_max = 0.0;
-    for (int k = 0; k + 1 < storeyCount(); ++k) {
-      StairStorey st;
-      const double h = b_.storey_heights[k];
-      st.risers = std::max(4, static_cast<int>(std::lround(h / s.riser)));
-      st.riser = h / st.risers;
-      st.risers_first = (st.risers + 1) / 2;
-      st.run_first = (st.risers_first - 1) * s.tread;
-      st.run_second = (st.risers - st.risers_first - 1) * s.tread;
-      st.landing_z = st.risers_first * st.riser;
-      run_max = std::max(run_max, st.run_first);
-      stairs_.push_back(st);
-    }
-    y_flights_ = yc_ + s.floor_landing_depth;
-    y_back_ = y_flights_ + run_max + s.half_landing_depth;
-    y_north_ = yc_ + std::max(b_.room_depth, hasStairs() ? y_back_ - yc_ : 0.0);
+    if (hasStairs()) stairs_.emplace(b_.stairwell, z_, L_, yc_, wt_, spec_.source);
+    y_north_ = yc_ + std::max(b_.room_depth, hasStairs() ? stairs_->yBack() - yc_ : 0.0);
     y_south_ = -yc_ - b_.room_depth;
-    const double half = s.width / 2;
-    xs_ = std::clamp(s.position * L_, half + 2.5, L_ - half - 1.2);
-    if (hasStairs() && L_ < s.width + 3.7)
-      throw Error(spec_.source + ": key 'building.corridor_length' is too short for the stairwell");
-    x_east_lane_ = xs_ + (kPartitionThickness / 2 + half - wt_ / 2) / 2;
-    x_west_lane_ = xs_ - (kPartitionThickness / 2 + half - wt_ / 2) / 2;
     x_turn_west_ = wt_ / 2 + kEndClearance;
     x_turn_east_ = L_ - wt_ / 2 - kEndClearance;
     x_start_ = std::max(spec_.robot.start_offset, x_turn_west_ + 1.2);
     if (part_ == Part::kBuilding &&
-        x_start_ > std::min(x_turn_east_, hasStairs() ? x_west_lane_ : x_turn_east_) - 1.5)
+        x_start_ > std::min(x_turn_east_, hasStairs() ? stairs_->westmostX() : x_turn_east_) - 1.5)
       throw Error(spec_.source +
                   ": key 'robot.start_offset' leaves no room to walk east of the start");
     if (b_.single_loaded) y_south_ = -yc_;
@@ -153,8 +100,8 @@ class Generator {
       splitRooms(x0, L_, south_rooms_);
     }
     if (hasStairs()) {
-      splitRooms(0.0, xs_ - half, north_rooms_);
-      splitRooms(xs_ + half, L_, north_rooms_);
+      splitRooms(0.0, stairs_->x0(), north_rooms_);
+      splitRooms(stairs_->x1(), L_, north_rooms_);
     } else {
       splitRooms(0.0, L_, north_rooms_);
     }
@@ -197,7 +144,7 @@ class Generator {
   void chooseEnteredRooms() {
     entered_.assign(storeyCount(), {});
     if (part_ != Part::kBuilding || spec_.robot.rooms_entered == 0) return;
-    const double x_hi = !hasStairs() || b_.wings == 2 ? x_turn_east_ : x_west_lane_;
+    const double x_hi = !hasStairs() || b_.wings == 2 ? x_turn_east_ : stairs_->westmostX();
     std::vector<const Room*> eligible;
     for (const auto* rooms : {&south_rooms_, &north_rooms_})
       for (const Room& r : *rooms) {
@@ -228,8 +175,7 @@ class Generator {
     if (cot_ == 0.0 || x <= 1e-9 || x >= L_ - 1e-9) return false;
     if (!north && atArmEdge(x)) return false;
     if (north && hasStairs() &&
-        (std::abs(x - (xs_ - b_.stairwell.width / 2)) < 1e-9 ||
-         std::abs(x - (xs_ + b_.stairwell.width / 2)) < 1e-9))
+        (std::abs(x - stairs_->x0()) < 1e-9 || std::abs(x - stairs_->x1()) < 1e-9))
       return false;
     return true;
   }
@@ -377,8 +323,7 @@ class Generator {
     const Rect outer{-wt_ / 2, y_south_ - wt_ / 2, L_ + wt_ / 2, y_north_ + wt_ / 2};
     std::vector<Rect> holes;
     if (hasStairs() && k > 0 && k < storeyCount()) {
-      const double half = b_.stairwell.width / 2;
-      holes.push_back({xs_ - half + wt_ / 2, y_flights_, xs_ + half - wt_ / 2, y_back_ - wt_ / 2});
+      holes = stairs_->slabHoles(k);
     }
     if (hasAtrium() && k > 0 && k < storeyCount())
       holes.push_back(
@@ -403,7 +348,6 @@ class Generator {
     const double zf = z_[k], t = b_.slab_thickness;
     const double z0 = zf - t, z1 = z_[k + 1] - t;  // walls pass through the slab below
     const double ceiling = z1;
-    const double half = b_.stairwell.width / 2;
     const double window_z0 = zf + b_.window_sill, window_z1 = window_z0 + b_.window_height;
 
     // Outer walls with windows at room centres; corridor ends glazed.
@@ -451,7 +395,7 @@ class Generator {
     };
     std::vector<Opening> north = corridorOpenings(north_rooms_);
     if (hasStairs())
-      north.push_back({xs_ - half + wt_ / 2, xs_ + half - wt_ / 2, zf, zf + 2.3, false});
+      for (const Opening& o : stairs_->corridorOpenings(zf, ceiling)) north.push_back(o);
     std::vector<Opening> south = corridorOpenings(south_rooms_);
     if (b_.single_loaded) {
       // The corridor's south wall is an outer wall: windows at room spacing, but not onto the arms.
@@ -489,14 +433,15 @@ class Generator {
       addPartition(false, south_rooms_[i].x0, z0, z1);
     }
     for (std::size_t i = 1; i < north_rooms_.size(); ++i) {
-      if (hasStairs() && std::abs(north_rooms_[i].x0 - (xs_ + half)) < 1e-9) continue;
+      if (hasStairs() && std::abs(north_rooms_[i].x0 - stairs_->x1()) < 1e-9) continue;
       addPartition(true, north_rooms_[i].x0, z0, z1);
     }
 
     if (hasStairs()) {
-      addWall(false, xs_ - half, yc_, y_north_, z0, z1, {});
-      addWall(false, xs_ + half, yc_, y_north_, z0, z1, {});
-      if (y_back_ < y_north_ - 1e-6) addWall(true, y_back_, xs_ - half, xs_ + half, z0, z1, {});
+      const double x0 = stairs_->x0(), x1 = stairs_->x1(), y_back = stairs_->yBack();
+      addWall(false, x0, yc_, y_north_, z0, z1, {});
+      addWall(false, x1, yc_, y_north_, z0, z1, {});
+      if (y_back < y_north_ - 1e-6) addWall(true, y_back, x0, x1, z0, z1, {});
     }
 
     // Ceiling lamps along the corridor axis.
@@ -516,9 +461,7 @@ class Generator {
         // caller).
       }
     }
-    if (north && hasStairs() && x1 > xs_ - b_.stairwell.width / 2 - 0.2 &&
-        x0 < xs_ + b_.stairwell.width / 2 + 0.2)
-      return false;
+    if (north && hasStairs() && x1 > stairs_->x0() - 0.2 && x0 < stairs_->x1() + 0.2) return false;
     if (!north && hasAtrium() && x1 > atrium_x0_ - 0.2 && x0 < atrium_x1_ + 0.2) return false;
     for (const ArmLayout& arm : arms_)  // clear of the turn into the arm
       if (!north && x1 > arm.x - yc_ - 0.6 && x0 < arm.x + yc_ + 0.6) return false;
@@ -652,43 +595,6 @@ class Generator {
                      Surface::kClutter, static_cast<float>(reflectivity));
   }
 
-  void addStairs(int k) {
-    const StairStorey& st = stairs_[k];
-    const double zf = z_[k], tread = b_.stairwell.tread, half = b_.stairwell.width / 2;
-    const double ex0 = xs_ + kPartitionThickness / 2, ex1 = xs_ + half - wt_ / 2;  // east flight
-    const double wx0 = xs_ - half + wt_ / 2, wx1 = xs_ - kPartitionThickness / 2;  // west flight
-    const double landing_back = y_back_ - wt_ / 2;
-    const double r = st.riser;
-    // Flight 1: east half, up towards +y.
-    for (int i = 1; i < st.risers_first; ++i) {
-      const double top = zf + i * r;
-      out_.mesh.addBox(Vector3d(ex0, y_flights_ + (i - 1) * tread, top - r - kStepUnderside),
-                       Vector3d(ex1, y_flights_ + i * tread, top), Surface::kStairs);
-    }
-    const double zl = zf + st.landing_z;
-    out_.mesh.addBox(Vector3d(ex0, y_flights_ + st.run_first, zl - kLandingThickness),
-                     Vector3d(ex1, landing_back, zl), Surface::kStairs);
-    out_.mesh.addBox(Vector3d(wx0, y_flights_ + st.run_second, zl - kLandingThickness),
-                     Vector3d(wx1, landing_back, zl), Surface::kStairs);
-    // Partition between the landing and the flights' shared wall line (the gap).
-    out_.mesh.addBox(
-        Vector3d(wx1, y_flights_ + std::min(st.run_first, st.run_second), zl - kLandingThickness),
-        Vector3d(ex0, landing_back, zl), Surface::kStairs);
-    // Flight 2: west half, up towards -y, from the half landing to the next floor.
-    const int second = st.risers - st.risers_first;
-    for (int j = 1; j < second; ++j) {
-      const double top = zl + j * r;
-      out_.mesh.addBox(
-          Vector3d(wx0, y_flights_ + st.run_second - j * tread, top - r - kStepUnderside),
-          Vector3d(wx1, y_flights_ + st.run_second - (j - 1) * tread, top), Surface::kStairs);
-    }
-    // Wall between the flights, through the whole storey.
-    out_.mesh.addBox(Vector3d(xs_ - kPartitionThickness / 2, y_flights_, zf),
-                     Vector3d(xs_ + kPartitionThickness / 2,
-                              y_flights_ + std::min(st.run_first, st.run_second), z_[k + 1]),
-                     Surface::kWall);
-  }
-
   // ---- route ----------------------------------------------------------------
 
   /// A side trip off a corridor lane, at `x` along it: into an arm or a room.
@@ -764,7 +670,6 @@ class Generator {
     const double walk = robot.walk_speed, climb = robot.stair_speed;
     auto floorZ = [&](int k) { return z_[k] + robot.body_height; };
     const int top = storeyCount() - 1;
-    const double y_turn = yc_ + b_.stairwell.floor_landing_depth / 2;  // U-turns on floor landings
 
     pending_ = detoursOf(0);
     at(x_start_, lane, floorZ(0), walk);
@@ -780,7 +685,7 @@ class Generator {
     // or an arm east of the stairs.
     bool east_loop = b_.wings == 2;
     // (The top storey's walk ends at the west flight, the others' at the east one.)
-    for (const ArmLayout& arm : arms_) east_loop = east_loop || arm.x >= x_west_lane_;
+    for (const ArmLayout& arm : arms_) east_loop = east_loop || arm.x >= stairs_->westmostX();
     // Ground floor: east along the north lane (and round the east end), then up.
     double lane_to_stairs = lane;
     if (east_loop) {
@@ -790,20 +695,14 @@ class Generator {
     }
     std::vector<Detour> ground_left;
     for (int k = 0; k < top; ++k) {
-      const StairStorey& st = stairs_[k];
-      const double zf = floorZ(k), zl = zf + st.landing_z, zn = floorZ(k + 1);
-      const double y_landing = (y_flights_ + st.run_first + y_back_ - wt_ / 2) / 2;
-      along(x_east_lane_, lane_to_stairs, zf);
+      const double zn = floorZ(k + 1);
+      along(stairs_->entryX(k), lane_to_stairs, floorZ(k));
       if (k == 0) ground_left = std::move(pending_);
-      at(x_east_lane_, y_flights_, zf, climb);
-      at(x_east_lane_, y_flights_ + st.run_first, zl, walk);
-      at(x_east_lane_, y_landing, zl, walk);
-      at(x_west_lane_, y_landing, zl, walk);
-      at(x_west_lane_, y_flights_ + st.run_second, zl, climb);
-      at(x_west_lane_, y_flights_, zn, walk);
+      for (const RouteVertex& v : stairs_->climb(k, robot.body_height, walk, climb))
+        out_.route.push_back(v);
       // Storey k+1: out to the south lane, west wing, back east.
       pending_ = detoursOf(k + 1);
-      at(x_west_lane_, -lane, zn, walk);
+      at(stairs_->exitX(k), -lane, zn, walk);
       along(x_turn_west_, -lane, zn);
       at(x_turn_west_, lane, zn, walk);
       lane_to_stairs = lane;
@@ -813,28 +712,15 @@ class Generator {
         lane_to_stairs = -lane;
       }
     }
-    // Down from the top storey, flight by flight, U-turning on each floor landing.
-    double y_entry = lane_to_stairs;
-    for (int k = top - 1; k >= 0; --k) {
-      const StairStorey& st = stairs_[k];
-      const double zf = floorZ(k), zl = zf + st.landing_z, zn = floorZ(k + 1);
-      const double y_landing = (y_flights_ + st.run_first + y_back_ - wt_ / 2) / 2;
-      along(x_west_lane_, y_entry, zn);
-      pending_.clear();
-      at(x_west_lane_, y_flights_, zn, climb);
-      at(x_west_lane_, y_flights_ + st.run_second, zl, walk);
-      at(x_west_lane_, y_landing, zl, walk);
-      at(x_east_lane_, y_landing, zl, walk);
-      at(x_east_lane_, y_flights_ + st.run_first, zl, climb);
-      at(x_east_lane_, y_flights_, zf, walk);
-      if (k > 0) {
-        at(x_east_lane_, y_turn, zf, walk);
-        y_entry = y_turn;
-      }
-    }
+    // Down from the top storey, flight by flight.
+    along(stairs_->exitX(top - 1), lane_to_stairs, floorZ(top));
+    pending_.clear();
+    for (int k = top - 1; k >= 0; --k)
+      for (const RouteVertex& v : stairs_->descend(k, robot.body_height, walk, climb, k > 0))
+        out_.route.push_back(v);
     // Ground floor: to the south lane, round the west end, back to the start.
     pending_ = std::move(ground_left);
-    at(x_east_lane_, -lane, floorZ(0), walk);
+    at(stairs_->entryX(0), -lane, floorZ(0), walk);
     along(x_turn_west_, -lane, floorZ(0));
     at(x_turn_west_, lane, floorZ(0), walk);
     along(x_start_, lane, floorZ(0));
@@ -846,12 +732,12 @@ class Generator {
   Random rng_;
   Random route_rng_;  ///< which rooms the walk enters
   Building out_;
-  std::vector<double> z_;  ///< floor top of storey k; z_[N] = roof top
-  std::vector<StairStorey> stairs_;
+  std::vector<double> z_;         ///< floor top of storey k; z_[N] = roof top
+  std::optional<Stairs> stairs_;  ///< when there are two storeys or more
   std::vector<Room> south_rooms_, north_rooms_;
   double L_ = 0, yc_ = 0, wt_ = 0;
-  double xs_ = 0, y_flights_ = 0, y_back_ = 0, y_north_ = 0, y_south_ = 0;
-  double x_east_lane_ = 0, x_west_lane_ = 0, x_turn_west_ = 0, x_turn_east_ = 0, x_start_ = 0;
+  double y_north_ = 0, y_south_ = 0;
+  double x_turn_west_ = 0, x_turn_east_ = 0, x_start_ = 0;
   double atrium_x0_ = 0, atrium_x1_ = 0;  ///< partition centrelines at the atrium's ends
   double cot_ = 0.0;            ///< cot(partition angle): x offset per metre away from the corridor
   const Room* room_ = nullptr;  ///< the room box2() furnishes

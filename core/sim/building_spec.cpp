@@ -76,6 +76,12 @@ void parseName(const std::string& name, LidarModel& model) {
   }
   model = parsed;
 }
+std::string nameOf(StairKind kind) {
+  return toString(kind);
+}
+void parseName(const std::string& name, StairKind& kind) {
+  kind = stairKindFromString(name);
+}
 std::string nameOf(RobotMotion motion) {
   return toString(motion);
 }
@@ -100,6 +106,7 @@ void parseName(const std::string& name, std::optional<ImuGrade>& grade) {
 
 template <typename V>
 void visitStairwell(V& v, StairwellSpec& s) {
+  v.choice("kind", s.kind);
   v.field("width", s.width);
   v.field("riser", s.riser);
   v.field("tread", s.tread);
@@ -336,6 +343,22 @@ void check(bool ok, const BuildingSpec& spec, const std::string& key, const std:
 }
 
 }  // namespace
+
+const char* toString(StairKind kind) {
+  switch (kind) {
+    case StairKind::kSwitchback:
+      return "switchback";
+    case StairKind::kStraight:
+      return "straight";
+  }
+  return "switchback";
+}
+
+StairKind stairKindFromString(const std::string& name) {
+  for (StairKind kind : {StairKind::kSwitchback, StairKind::kStraight})
+    if (name == toString(kind)) return kind;
+  throw Error("unknown stair kind '" + name + "' (switchback or straight)");
+}
 
 void BuildingSpec::validate() const {
   const BuildingLayoutSpec& b = building;

@@ -15,13 +15,25 @@
 
 namespace storey::sim {
 
-/// The stairwell linking all storeys: two flights and a half landing per storey.
+/// How the stairs link the storeys (docs/simulator.md, "Stairs").
+enum class StairKind {
+  kSwitchback,  ///< an enclosed stairwell: two flights and a half landing per storey
+  kStraight,    ///< open straight flights along the corridor, one per storey, side by side
+};
+const char* toString(StairKind kind);
+/// "switchback" or "straight"; storey::Error listing them otherwise.
+StairKind stairKindFromString(const std::string& name);
+
+/// The stairs linking all storeys, north of the corridor.
 struct StairwellSpec {
-  double width = 2.8;   ///< across both flights [m]
+  StairKind kind = StairKind::kSwitchback;
+  double width = 2.8;   ///< across both flights (kStraight: both lanes) [m]
   double riser = 0.17;  ///< nominal riser; the real one divides the storey height evenly [m]
   double tread = 0.28;  ///< [m]
-  double floor_landing_depth = 1.6;  ///< landing at each floor, between corridor and flights [m]
-  double half_landing_depth = 1.4;   ///< [m]
+  /// Landing at each floor, between corridor and flights (kStraight: at
+  /// both ends of the flights, along the corridor) [m].
+  double floor_landing_depth = 1.6;
+  double half_landing_depth = 1.4;  ///< [m] (kSwitchback)
   double position = 0.8;  ///< centre along the corridor, as a fraction of its length [0, 1]
 };
 

@@ -169,7 +169,8 @@ BuildingSpec draw(std::uint64_t seed, std::uint64_t attempt) {
   // The footprint and the walk's rooms (drawn last, so the draws above are
   // unchanged): a single-loaded corridor in a fifth of the buildings without
   // an atrium; arms making an L, T or U in two fifths; rooms entered on every
-  // storey in half; a wide (monumental) stairwell in a sixth.
+  // storey in half; a wide (monumental) stairwell in a sixth; open straight
+  // stairs in a third.
   if (b.atrium.rooms == 0 && rng.uniform() < 0.2) b.single_loaded = true;
   if (rng.uniform() < 0.4) {
     const double shape = rng.uniform();
@@ -192,6 +193,18 @@ BuildingSpec draw(std::uint64_t seed, std::uint64_t attempt) {
   }
   if (rng.uniform() < 0.5) r.rooms_entered = uniformInt(rng, 1, 2);
   if (rng.uniform() < 1.0 / 6.0) s.width = mm(rng.uniform(4.0, 5.5));
+  // Open straight flights along the corridor in a third of the buildings.
+  if (rng.uniform() < 1.0 / 3.0) {
+    s.kind = StairKind::kStraight;
+    // The flights run along the corridor: make it long enough for the
+    // longest one, its landings and the start west of them.
+    double run = 0.0;
+    for (std::size_t k = 0; k + 1 < b.storey_heights.size(); ++k)
+      run = std::max(run, (std::max(4.0, std::round(b.storey_heights[k] / s.riser)) - 1) * s.tread);
+    const double half = run / 2 + s.floor_landing_depth;
+    b.corridor_length = mm(std::max(b.corridor_length, 2 * half + 9.0));
+    s.position = mm(std::max(s.position, (half + 6.0) / b.corridor_length));
+  }
   return spec;
 }
 

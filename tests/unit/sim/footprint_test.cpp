@@ -137,3 +137,57 @@ TEST(Footprint, TheWalkGoesIntoRoomsOnEveryStorey) {
 
 }  // namespace
 }  // namespace storey::sim
+
+namespace storey::sim {
+namespace {
+
+TEST(Stairs, StraightFlightsAlternateAlongTheCorridorOneAStorey) {
+  BuildingSpec spec = twoStoreys();
+  spec.building.storey_heights = {3.2, 3.0, 3.4};
+  spec.building.corridor_length = 30.0;
+  spec.building.stairwell.kind = StairKind::kStraight;
+  spec.building.stairwell.position = 0.6;
+  const Building building = generateBuilding(spec);
+  // The climbs: route segments that rise a whole storey, along x only, the
+  // first east (lane A), the second west (lane B); the descents reverse them.
+  std::vector<double> climbs;  // signed x run of each rising segment
+  for (std::size_t i = 1; i < building.route.size(); ++i) {
+    const Eigen::Vector3d d = building.route[i].p - building.route[i - 1].p;
+    if (std::abs(d.z()) < 1.0) continue;
+    EXPECT_NEAR(d.y(), 0.0, 1e-9);
+    climbs.push_back(d.z() > 0 ? d.x() : -d.x());
+  }
+  ASSERT_EQ(climbs.size(), 4u);  // up two flights, down two
+  EXPECT_GT(climbs[0], 0.0);     // east
+  EXPECT_LT(climbs[1], 0.0);     // west
+  EXPECT_LT(climbs[2], 0.0);     // down the second: reversed
+  EXPECT_GT(climbs[3], 0.0);
+  // Each flight rises as its steps: the storey height over its run, at the
+  // riser and tread the spec gives (to the nearest whole riser).
+  const double slope = std::abs(3.2 / climbs[0]);
+  EXPECT_NEAR(slope, 0.17 / 0.28, 0.03);
+
+  // The floor above a flight is open over it: looking down from 1 m above
+  // the first floor at the flight's middle, the first hit is a step below it.
+  const RayCaster caster(building.mesh);
+  double x_mid = 0.0, y_lane = 0.0;
+  for (std::size_t i = 1; i < building.route.size(); ++i) {
+    const Eigen::Vector3d d = building.route[i].p - building.route[i - 1].p;
+    if (d.z() > 1.0) {
+      x_mid = (building.route[i].p.x() + building.route[i - 1].p.x()) / 2;
+      y_lane = building.route[i].p.y();
+      break;
+    }
+  }
+  const double down =
+      castOne(caster, Eigen::Vector3d(x_mid, y_lane, 3.2 + 1.0), -Eigen::Vector3d::UnitZ());
+  EXPECT_GT(down, 1.0 + 0.5);
+  EXPECT_LT(down, 1.0 + 3.2);
+  // The corridor wall along the flights is glazed: from the corridor the
+  // LiDAR sees the steps or the wall between the lanes, not the corridor wall.
+  const double across = castOne(caster, Eigen::Vector3d(x_mid, 0.0, 1.6), Eigen::Vector3d::UnitY());
+  EXPECT_GT(across, 1.1 + 0.1);
+}
+
+}  // namespace
+}  // namespace storey::sim
