@@ -130,7 +130,7 @@ int runInfo(const InfoOptions& options) {
   }
   out << '\n';
   if (summary.input_problem.empty()) {
-    out << "Storey reads " << (bag ? "point clouds from " : "") << summary.points_topic
+    out << "Storey reads " << (bag ? "the LiDAR from " : "") << summary.points_topic
         << " and IMU from " << summary.imu_topic << '\n';
   } else {
     out << "Storey cannot run on this log as it is: " << summary.input_problem << '\n';
