@@ -30,6 +30,15 @@ const char* toString(LogFormat format) {
   return "unknown";
 }
 
+std::string logPathForChosenFile(const std::string& chosen) {
+  const std::filesystem::path p(chosen);
+  if (p.filename() == kRosbag2MetadataFile || p.extension() == ".pcd") {
+    const std::string folder = p.parent_path().empty() ? "." : p.parent_path().string();
+    return folder;
+  }
+  return chosen;
+}
+
 LogFormat detectLogFormat(const std::string& path) {
   namespace fs = std::filesystem;
   std::error_code ec;

@@ -27,4 +27,13 @@ const char* toString(LogFormat format);
 /// a ROS bag of another version, a folder without PCD scans, or of no known format.
 LogFormat detectLogFormat(const std::string& path);
 
+/// The log a user means by choosing `chosen` in a file dialog (which can
+/// pick files only): a rosbag2 folder's metadata.yaml or a PCD file of a PCD
+/// folder stands for its folder; any other path is itself.
+std::string logPathForChosenFile(const std::string& chosen);
+
+/// File dialog filter of the logs Storey reads (Qt syntax).
+inline constexpr const char* kLogFileDialogFilter =
+    "Logs (*.bag *.pcap *.pcapng *.db3 *.mcap metadata.yaml *.pcd);;All files (*)";
+
 }  // namespace storey
