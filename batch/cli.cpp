@@ -99,7 +99,20 @@ int main(int argc, char** argv) {
       "--pcap", simulate.pcap,
       "also write simulation.pcap (Velodyne packets as VeloView records them) + imu.csv");
   sim_cmd->add_flag_callback(
-      "--no-bag", [&simulate] { simulate.bag = false; }, "no ROS1 bag (with --pcap)");
+      "--no-bag", [&simulate] { simulate.bag = false; }, "no ROS1 bag (with --pcap or --ros2)");
+  sim_cmd
+      ->add_option("--ros2", simulate.ros2,
+                   "also write a ROS 2 bag (simulation_ros2/: metadata.yaml + sqlite3 .db3 or "
+                   ".mcap, CDR messages)")
+      ->check(CLI::IsMember({"db3", "mcap"}));
+  sim_cmd
+      ->add_option("--compression", simulate.mcap_compression,
+                   "chunk compression of the ROS 2 bag's MCAP file")
+      ->check(CLI::IsMember({"none", "zstd", "lz4"}))
+      ->capture_default_str();
+  sim_cmd->add_flag("--packets", simulate.packets,
+                    "the LiDAR as velodyne_msgs/VelodyneScan packets on /velodyne_packets in the "
+                    "bags, not point clouds (Velodyne models)");
 
   EvalOptions eval;
   auto* eval_cmd = app.add_subcommand(

@@ -6,6 +6,7 @@
 
 #include "commands.h"
 #include "io/log_summary.h"
+#include "io/ros_messages.h"
 #include "options_config.h"
 
 namespace storey::cli {
@@ -87,11 +88,13 @@ int runInfo(const InfoOptions& options) {
   const Config config = configFromOptions(options.common);
   const LogSummary summary = summarizeLog(options.log_path, config.input, config.sensor);
   std::ostream& out = std::cout;
-  const bool bag = summary.compression.size() > 0;
+  const bool bag = summary.ros;
 
   out << "Log " << summary.path << '\n'
       << "  format       " << summary.format << ", " << bytesText(summary.size_bytes);
-  if (bag) out << ", " << summary.chunks << " chunks (compression: " << summary.compression << ")";
+  if (!summary.compression.empty()) {
+    out << ", " << summary.chunks << " chunks (compression: " << summary.compression << ")";
+  }
   out << "\n  messages     " << summary.messages << '\n';
   if (summary.messages > 0) {
     out << (bag ? "  record time  " : "  time         ") << stampText(summary.start_ns) << " .. "
@@ -119,11 +122,15 @@ int runInfo(const InfoOptions& options) {
     table.print(out, "  ");
   }
   for (const auto& t : summary.topics) {
-    if (!t.fields.empty() || t.type == "sensor_msgs/PointCloud2") printCloudTopic(t, out);
+    if (!t.fields.empty() || canonicalRosType(t.type) == kPointCloud2Type) printCloudTopic(t, out);
+    if (canonicalRosType(t.type) == kVelodyneScanType && t.count > 0) {
+      out << "\nVelodyne packets " << t.name << ": packets per message min " << t.points_min
+          << ", median " << t.points_median << ", max " << t.points_max << '\n';
+    }
   }
   out << '\n';
   if (summary.input_problem.empty()) {
-    out << "Storey reads " << (bag ? "point clouds from " : "") << summary.points_topic
+    out << "Storey reads " << (bag ? "the LiDAR from " : "") << summary.points_topic
         << " and IMU from " << summary.imu_topic << '\n';
   } else {
     out << "Storey cannot run on this log as it is: " << summary.input_problem << '\n';

@@ -30,8 +30,15 @@ int runSimulate(const SimulateOptions& options) {
   sim_options.threads = options.threads;
   sim_options.formats.bag = options.bag;
   sim_options.formats.pcap = options.pcap;
-  if (!options.bag && !options.pcap)
-    throw Error("--no-bag needs --pcap (nothing would be written)");
+  sim_options.formats.packets = options.packets;
+  if (options.ros2 == "db3") sim_options.formats.ros2 = sim::Ros2Format::kDb3;
+  if (options.ros2 == "mcap") sim_options.formats.ros2 = sim::Ros2Format::kMcap;
+  if (options.mcap_compression == "none")
+    sim_options.formats.mcap_compression = sim::McapCompression::kNone;
+  if (options.mcap_compression == "lz4")
+    sim_options.formats.mcap_compression = sim::McapCompression::kLz4;
+  if (!options.bag && !options.pcap && options.ros2.empty())
+    throw Error("--no-bag needs --pcap or --ros2 (nothing would be written)");
   if (sim_options.max_duration < 0.0) throw Error("--duration must be positive");
   if (sim_options.threads < 0) throw Error("--threads must be 0 (all cores) or more");
   const sim::SimulationResult result =
@@ -45,6 +52,11 @@ int runSimulate(const SimulateOptions& options) {
             << std::setprecision(1) << result.wall_time << " s wall time ("
             << result.duration / std::max(result.wall_time, 1e-9) << "x real time)\n";
   if (options.pcap) std::cout << "Velodyne capture: " << result.pcap_packets << " data packets\n";
+  if (!options.ros2.empty()) {
+    std::cout << "ROS 2 bag: " << sim::kRos2BagDir << "/ (" << options.ros2
+              << (options.ros2 == "mcap" ? ", " + options.mcap_compression + " chunks" : "")
+              << ")\n";
+  }
   std::cout << "output: " << result.out_dir << '\n';
   return 0;
 }

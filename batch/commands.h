@@ -45,12 +45,15 @@ struct SimulateOptions {
   std::string imu;                    ///< --imu: IMU grade override (GRADE or GRADE@HZ)
   std::string motion;                 ///< --motion: legged or handheld
   bool progress = true;
-  bool perfect_sensors = false;        ///< --perfect-sensors: no noise, dropouts or biases
-  bool compress = true;                ///< --no-compress clears it: plain (not LZ4) bag chunks
-  std::optional<double> max_duration;  ///< --duration: stop the sensors after this time [s]
-  int threads = 0;                     ///< --threads: ray-casting threads, 0 = all cores
-  bool pcap = false;                   ///< --pcap: also a Velodyne capture + IMU CSV
-  bool bag = true;                     ///< --no-bag clears it: no ROS1 bag
+  bool perfect_sensors = false;           ///< --perfect-sensors: no noise, dropouts or biases
+  bool compress = true;                   ///< --no-compress clears it: plain (not LZ4) bag chunks
+  std::optional<double> max_duration;     ///< --duration: stop the sensors after this time [s]
+  int threads = 0;                        ///< --threads: ray-casting threads, 0 = all cores
+  bool pcap = false;                      ///< --pcap: also a Velodyne capture + IMU CSV
+  bool bag = true;                        ///< --no-bag clears it: no ROS1 bag
+  std::string ros2;                       ///< --ros2: "db3" or "mcap"; empty = no ROS 2 bag
+  std::string mcap_compression = "zstd";  ///< --compression: none, zstd, lz4 (MCAP chunks)
+  bool packets = false;                   ///< --packets: LiDAR as VelodyneScan packets
 };
 
 struct EvalOptions {

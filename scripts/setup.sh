@@ -11,6 +11,7 @@ PACKAGES=(
   libtbb-dev libembree-dev librosbag-dev libsensor-msgs-dev libpcap-dev
   nlohmann-json3-dev libcli11-dev libyaml-cpp-dev libgtest-dev libgmock-dev
   libbenchmark-dev xvfb xauth
+  libsqlite3-dev libzstd-dev liblz4-dev zlib1g-dev
   cloudcompare libqt5opengl5-dev dpkg-dev
 )
 

@@ -12,10 +12,12 @@
 #include "io/log_format.h"
 #include "io/pcd_file.h"
 #include "io/pcd_folder_reader.h"
+#include "io/ros2_bag.h"
 #include "io/rosbag_file.h"
 #include "io/topic_selection.h"
 #include "io/velodyne/pcap_file.h"
 #include "io/velodyne/velodyne_pcap_reader.h"
+#include "io/velodyne/velodyne_scan_decoder.h"
 
 namespace storey {
 namespace {
@@ -23,7 +25,8 @@ namespace {
 /// Accumulates one topic's statistics while the log is read.
 struct TopicAccumulator {
   TopicSummary summary;
-  std::vector<std::int64_t> points_per_message;
+  std::vector<std::int64_t> points_per_message;  ///< VelodyneScan topics: packets per message
+  std::map<std::string, std::int64_t> packet_drops;
   bool have_stamp = false;
 
   void addStamp(std::int64_t stamp_ns) {
@@ -68,12 +71,6 @@ std::string compressionOf(const RosbagStructure& structure) {
 std::string fixed(double value, int decimals) {
   char text[64];
   std::snprintf(text, sizeof(text), "%.*f", decimals, value);
-  return text;
-}
-
-std::string hexByte(std::uint8_t value) {
-  char text[8];
-  std::snprintf(text, sizeof(text), "0x%02X", value);
   return text;
 }
 
@@ -135,7 +132,7 @@ LogSummary summarizePcap(const std::string& path, const InputConfig& input,
       {"sensor", std::string(velodyne::toString(probe.model)) +
                      (probe.model_from_product_id ? " (product id "
                                                   : " (from the packet period; product id ") +
-                     hexByte(probe.product) + ")"});
+                     velodyne::hexByte(probe.product) + ")"});
   out.properties.push_back(
       {"return mode", velodyne::toString(static_cast<velodyne::ReturnMode>(probe.return_mode))});
   summarizeStreams(
@@ -223,6 +220,8 @@ LogSummary summarizeLog(const std::string& path, const InputConfig& input,
     case LogFormat::kPcdFolder:
       return summarizePcdFolder(path, input, sensor, progress);
     case LogFormat::kRosbag1:
+    case LogFormat::kRos2Sqlite:
+    case LogFormat::kMcap:
       break;
   }
   return summarizeLog(path, input, progress);
@@ -231,17 +230,28 @@ LogSummary summarizeLog(const std::string& path, const InputConfig& input,
 LogSummary summarizeLog(const std::string& path, const InputConfig& input,
                         const ProgressFn& progress) {
   const LogFormat format = detectLogFormat(path);
-  if (format != LogFormat::kRosbag1) {
+  if (format == LogFormat::kVelodynePcap || format == LogFormat::kPcdFolder) {
     return summarizeLog(path, input, SensorConfig{}, progress);
   }
-  RosbagFile bag(path);
+  std::unique_ptr<RosMessageSource> source;
+  if (format == LogFormat::kRosbag1) {
+    auto rosbag = std::make_unique<RosbagFile>(path);
+    source = std::move(rosbag);
+  } else {
+    source = openRos2Bag(path);
+  }
+  RosMessageSource& bag = *source;
 
   LogSummary out;
   out.path = path;
-  out.format = "ROS1 bag 2.0";
-  out.size_bytes = bag.structure().file_size;
-  out.compression = compressionOf(bag.structure());
-  out.chunks = bag.structure().chunk_count;
+  out.format = bag.formatName();
+  out.ros = true;
+  out.size_bytes = bag.sizeBytes();
+  if (format == LogFormat::kRosbag1) {
+    const auto& structure = static_cast<RosbagFile&>(bag).structure();
+    out.compression = compressionOf(structure);
+    out.chunks = structure.chunk_count;
+  }
   try {
     const TopicChoice choice = chooseTopics(bag.topics(), input, path);
     out.points_topic = choice.points_topic;
@@ -258,10 +268,18 @@ LogSummary summarizeLog(const std::string& path, const InputConfig& input,
     acc.summary.header_stamps = bag.hasHeader(t.name);
   }
 
-  const double total =
-      static_cast<double>(std::max<std::uint64_t>(1, bag.structure().message_count));
+  const double total = static_cast<double>(std::max<std::int64_t>(1, bag.messageCount()));
   bool have_record = false;
   PointCloudMessage cloud;
+  VelodyneScanMessage packets;
+  // Packet topics: the model and return mode from the first packets.
+  std::map<std::string, std::unique_ptr<VelodyneScanDecoder>> decoders;
+  auto velodyne = [&](const std::string& topic) -> VelodyneScanDecoder& {
+    auto& d = decoders[topic];
+    if (!d)
+      d = std::make_unique<VelodyneScanDecoder>(path + ": " + topic, velodyneScanOptions(input));
+    return *d;
+  };
   bag.select({});
   while (bag.next()) {
     auto& acc = topics[{bag.topic(), bag.type()}];
@@ -272,10 +290,17 @@ LogSummary summarizeLog(const std::string& path, const InputConfig& input,
     out.end_ns = have_record ? std::max(out.end_ns, record_ns) : record_ns;
     have_record = true;
 
-    if (bag.type() == kPointCloud2Type) {
+    const std::string type = canonicalRosType(bag.type());
+    if (type == kPointCloud2Type) {
       bag.readPointCloud(cloud);
       acc.addCloud(cloud);
       acc.addStamp(cloud.stamp_ns);
+    } else if (type == kVelodyneScanType) {
+      bag.readVelodyneScan(packets);
+      acc.addStamp(packets.stamp_ns);
+      std::vector<Scan> done;
+      velodyne(bag.topic()).add(packets, done, acc.packet_drops);
+      acc.points_per_message.push_back(static_cast<std::int64_t>(packets.packets.size()));
     } else if (acc.summary.header_stamps) {
       const auto stamp = bag.readHeaderStamp();
       acc.addStamp(stamp ? *stamp : record_ns);
@@ -288,6 +313,18 @@ LogSummary summarizeLog(const std::string& path, const InputConfig& input,
     }
   }
   for (auto& [key, acc] : topics) out.topics.push_back(acc.finish());
+  for (const auto& [name, value] : bag.properties()) out.properties.push_back({name, value});
+  for (const auto& [topic, decoder] : decoders) {
+    if (!decoder->started()) continue;
+    out.properties.push_back(
+        {topic,
+         std::string(velodyne::toString(decoder->model())) + " packets" +
+             (decoder->detection().from_product_id ? " (product id "
+                                                   : " (from the packet period; product id ") +
+             velodyne::hexByte(decoder->product()) + "), " +
+             velodyne::toString(static_cast<velodyne::ReturnMode>(decoder->returnMode())) + ", " +
+             std::to_string(decoder->packets()) + " packets"});
+  }
   if (progress) progress(1.0, "reading log");
   return out;
 }

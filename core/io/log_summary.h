@@ -25,7 +25,7 @@ struct TopicSummary {
   double durationSeconds() const;   ///< last - first [s]
   double rateHz() const;            ///< (count - 1) / duration [Hz]; 0 when undefined
 
-  // sensor_msgs/PointCloud2 topics only.
+  // sensor_msgs/PointCloud2 topics only (VelodyneScan topics: packets per message in points_*).
   std::vector<PointFieldDesc> fields;  ///< of the first message
   std::uint32_t point_step = 0;        ///< of the first message [bytes]
   bool layout_varies = false;          ///< some message has other fields or point_step
@@ -36,7 +36,8 @@ struct TopicSummary {
 
 struct LogSummary {
   std::string path;
-  std::string format;  ///< e.g. "ROS1 bag 2.0"
+  std::string format;  ///< e.g. "ROS1 bag 2.0", "rosbag2 (sqlite3)", "MCAP"
+  bool ros = false;    ///< a log of ROS topics (ROS1 bag, rosbag2, MCAP)
   std::uint64_t size_bytes = 0;
   std::string compression;  ///< chunk compression(s), e.g. "none", "lz4", "none+lz4"
   std::uint32_t chunks = 0;

@@ -16,6 +16,9 @@ std::unique_ptr<LogReader> openLog(const std::string& path, const InputConfig& i
       return openVelodynePcapLog(path, input, sensor);
     case LogFormat::kPcdFolder:
       return openPcdFolderLog(path, input, sensor);
+    case LogFormat::kRos2Sqlite:
+    case LogFormat::kMcap:
+      return openRos2Log(path, input, sensor);
   }
   throw Error(path + ": unknown log format");
 }

@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "common/error.h"
+#include "io/ros_message_codec.h"
 
 namespace storey {
 namespace {
@@ -59,42 +60,7 @@ std::int64_t toNs(const ros::Time& t) {
   return static_cast<std::int64_t>(t.toNSec());
 }
 
-/// True when the first declaration of a message definition is a std_msgs/Header.
-bool definitionStartsWithHeader(const std::string& definition) {
-  std::istringstream lines(definition);
-  std::string line;
-  while (std::getline(lines, line)) {
-    const auto hash = line.find('#');
-    if (hash != std::string::npos) line.erase(hash);
-    std::istringstream words(line);
-    std::string type, name;
-    if (!(words >> type)) continue;  // blank or comment line
-    words >> name;
-    return (type == "Header" || type == "std_msgs/Header") && !name.empty();
-  }
-  return false;
-}
-
-std::string formatSeconds(std::int64_t ns) {
-  char text[40];
-  std::snprintf(text, sizeof(text), "%.6f", static_cast<double>(ns) * 1e-9);
-  return text;
-}
-
 }  // namespace
-
-PointCloudView PointCloudMessage::view() const {
-  PointCloudView v;
-  v.fields = fields;
-  v.height = height;
-  v.width = width;
-  v.point_step = point_step;
-  v.row_step = row_step;
-  v.is_bigendian = is_bigendian;
-  v.data = data.data();
-  v.size = data.size();
-  return v;
-}
 
 struct RosbagFile::Impl {
   std::string path;
@@ -219,7 +185,7 @@ std::int64_t RosbagFile::indexInTopic() const {
 
 std::string RosbagFile::where() const {
   return impl_->path + ": " + topic() + " message #" + std::to_string(indexInTopic()) +
-         " (record time " + formatSeconds(recordTimeNs()) + " s)";
+         " (record time " + formatSecondsNs(recordTimeNs()) + " s)";
 }
 
 void RosbagFile::readPointCloud(PointCloudMessage& out) const {
@@ -254,6 +220,37 @@ ImuMessage RosbagFile::readImu() const {
     out.has_accel = msg->linear_acceleration_covariance[0] != -1.0;
     return out;
   });
+}
+
+void RosbagFile::readVelodyneScan(VelodyneScanMessage& out) const {
+  impl_->guarded(where(), [&] {
+    const rosbag::MessageInstance& m = impl_->current();
+    std::vector<std::uint8_t> bytes(m.size());
+    ros::serialization::OStream stream(bytes.data(), static_cast<std::uint32_t>(bytes.size()));
+    m.write(stream);
+    try {
+      decodeVelodyneScan(bytes.data(), bytes.size(), WireFormat::kRos1, out);
+    } catch (const Error& e) {
+      throw Error(where() + ": " + e.what());
+    }
+  });
+}
+
+std::vector<std::pair<std::string, std::string>> RosbagFile::properties() const {
+  std::string compression;
+  for (const auto& [name, count] : impl_->structure.chunks_by_compression) {
+    compression += (compression.empty() ? "" : "+") + name;
+  }
+  return {{"chunks", std::to_string(impl_->structure.chunk_count)},
+          {"compression", compression.empty() ? "none" : compression}};
+}
+
+std::uint64_t RosbagFile::sizeBytes() const {
+  return impl_->structure.file_size;
+}
+
+std::int64_t RosbagFile::messageCount() const {
+  return static_cast<std::int64_t>(impl_->structure.message_count);
 }
 
 std::optional<std::int64_t> RosbagFile::readHeaderStamp() const {

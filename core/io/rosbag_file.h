@@ -10,75 +10,60 @@
 #include <vector>
 
 #include "io/point_cloud_layout.h"
+#include "io/ros_message_source.h"
 #include "io/rosbag_structure.h"
 #include "io/topic_selection.h"
 #include "types/imu_sample.h"
 
 namespace storey {
 
-/// A sensor_msgs/PointCloud2 without ROS types; owns its bytes.
-struct PointCloudMessage {
-  std::int64_t stamp_ns = 0;  ///< header stamp [ns]
-  std::string frame_id;
-  std::vector<PointFieldDesc> fields;
-  std::uint32_t height = 0;
-  std::uint32_t width = 0;
-  std::uint32_t point_step = 0;
-  std::uint32_t row_step = 0;
-  bool is_bigendian = false;
-  std::vector<std::uint8_t> data;
-
-  /// A view of this message's layout and bytes (valid while the message lives).
-  PointCloudView view() const;
-};
-
-/// A sensor_msgs/Imu reduced to what the pipeline uses (orientation ignored).
-struct ImuMessage {
-  ImuSample sample;       ///< header stamp, angular_velocity, linear_acceleration
-  bool has_gyro = true;   ///< false when angular_velocity_covariance[0] == -1 ("no data")
-  bool has_accel = true;  ///< false when linear_acceleration_covariance[0] == -1
-};
-
-class RosbagFile {
+class RosbagFile final : public RosMessageSource {
  public:
   /// Checks the file's structure (checkRosbagStructure), then opens it with
   /// librosbag and lists its topics. Throws storey::Error naming the file.
   explicit RosbagFile(const std::string& path);
-  ~RosbagFile();
+  ~RosbagFile() override;
   RosbagFile(const RosbagFile&) = delete;
   RosbagFile& operator=(const RosbagFile&) = delete;
 
-  const std::string& path() const;
+  const std::string& path() const override;
   const RosbagStructure& structure() const;
   /// Every (topic, type) of the bag with its message count, sorted by topic.
-  const std::vector<TopicInfo>& topics() const;
+  const std::vector<TopicInfo>& topics() const override;
   /// Whether messages of `topic` start with a std_msgs/Header (from the message definition).
-  bool hasHeader(const std::string& topic) const;
+  bool hasHeader(const std::string& topic) const override;
 
   /// Starts iterating over the messages of `topics` (every topic when empty),
   /// in record-time order, lazily: one message in memory at a time.
-  void select(const std::vector<std::string>& topics);
+  void select(const std::vector<std::string>& topics) override;
   /// Advances to the next selected message; false at the end.
-  bool next();
+  bool next() override;
   /// Earliest and latest record time of the selected messages [ns] (0 when none).
-  std::int64_t selectionBeginNs() const;
-  std::int64_t selectionEndNs() const;
+  std::int64_t selectionBeginNs() const override;
+  std::int64_t selectionEndNs() const override;
 
   // The current message (after next() returned true).
-  const std::string& topic() const;
-  const std::string& type() const;
-  std::int64_t recordTimeNs() const;
-  std::int64_t indexInTopic() const;  ///< 0-based position of the message within its topic
+  const std::string& topic() const override;
+  const std::string& type() const override;
+  std::int64_t recordTimeNs() const override;
+  std::int64_t indexInTopic() const override;  ///< 0-based position of the message within its topic
   /// "FILE: TOPIC message #N (record time S s)", the prefix of errors about this message.
-  std::string where() const;
+  std::string where() const override;
 
   /// Deserialises the current message as sensor_msgs/PointCloud2 into `out`.
-  void readPointCloud(PointCloudMessage& out) const;
+  void readPointCloud(PointCloudMessage& out) const override;
   /// Deserialises the current message as sensor_msgs/Imu.
-  ImuMessage readImu() const;
+  ImuMessage readImu() const override;
   /// The header stamp of the current message when its type starts with a
   /// std_msgs/Header (reads only the header's first bytes), else nullopt.
-  std::optional<std::int64_t> readHeaderStamp() const;
+  std::optional<std::int64_t> readHeaderStamp() const override;
+  /// Deserialises the current message as velodyne_msgs/VelodyneScan (from its raw bytes).
+  void readVelodyneScan(VelodyneScanMessage& out) const override;
+
+  std::string formatName() const override { return "ROS1 bag 2.0"; }
+  std::vector<std::pair<std::string, std::string>> properties() const override;
+  std::uint64_t sizeBytes() const override;
+  std::int64_t messageCount() const override;
 
  private:
   struct Impl;

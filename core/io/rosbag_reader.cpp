@@ -8,8 +8,10 @@
 #include "common/log.h"
 #include "io/message_sequencer.h"
 #include "io/point_cloud_to_scan.h"
+#include "io/ros2_bag.h"
 #include "io/rosbag_file.h"
 #include "io/topic_selection.h"
+#include "io/velodyne/velodyne_scan_decoder.h"
 
 namespace storey {
 namespace {
@@ -20,15 +22,22 @@ constexpr const char* kDropOtherType = "message_of_other_type";
 /// suggest that the LiDAR and the IMU stamp with different clocks.
 constexpr double kClockMismatchS = 1.0;
 
-class RosbagReader final : public LogReader {
+/// Any ROS log (ROS1 bag, rosbag2, MCAP): point clouds or Velodyne packets and IMU.
+class RosLogReader final : public LogReader {
  public:
-  RosbagReader(const std::string& path, const InputConfig& input, const SensorConfig& sensor)
-      : bag_(path),
-        topics_(chooseTopics(bag_.topics(), input, path)),
+  RosLogReader(std::unique_ptr<RosMessageSource> source, const InputConfig& input,
+               const SensorConfig& sensor)
+      : source_(std::move(source)),
+        bag_(*source_),
+        topics_(chooseTopics(bag_.topics(), input, bag_.path())),
         clouds_(topics_.points_topic, sensor.lidar_model,
                 PointFilter{input.min_range, input.max_range}),
         sequencer_(sequencerOptions(sensor), stats_),
         offset_ns_(secondsToNs(sensor.time_offset_lidar_to_imu)) {
+    if (topics_.points_type == kVelodyneScanType) {
+      packets_ = std::make_unique<VelodyneScanDecoder>(bag_.path() + ": " + topics_.points_topic,
+                                                       velodyneScanOptions(input));
+    }
     bag_.select({topics_.points_topic, topics_.imu_topic});
   }
 
@@ -37,6 +46,11 @@ class RosbagReader final : public LogReader {
       if (ended_) return false;
       if (!readOne()) {
         ended_ = true;
+        if (packets_) {
+          std::vector<Scan> done;
+          packets_->flush(done);
+          for (auto& scan : done) pushScan(std::move(scan), false);
+        }
         sequencer_.finish();
       }
     }
@@ -55,7 +69,11 @@ class RosbagReader final : public LogReader {
   }
 
   std::string describe() const override {
-    return "ROS1 bag " + bag_.path() + " (" + topics_.points_topic + ", " + topics_.imu_topic + ")";
+    std::string lidar = topics_.points_topic;
+    if (packets_ && packets_->started()) {
+      lidar += std::string(": ") + velodyne::toString(packets_->model()) + " packets";
+    }
+    return bag_.formatName() + " " + bag_.path() + " (" + lidar + ", " + topics_.imu_topic + ")";
   }
 
  private:
@@ -71,11 +89,23 @@ class RosbagReader final : public LogReader {
     started_ = true;
     last_record_ns_ = bag_.recordTimeNs();
     const bool is_points = bag_.topic() == topics_.points_topic;
-    if (bag_.type() != (is_points ? kPointCloud2Type : kImuType)) {
+    if (canonicalRosType(bag_.type()) != (is_points ? topics_.points_type : kImuType)) {
       ++stats_.dropped[kDropOtherType];
       return true;
     }
-    if (is_points) {
+    if (is_points && packets_) {
+      bag_.readVelodyneScan(packet_scan_);
+      std::vector<Scan> done;
+      try {
+        packets_->add(packet_scan_, done, stats_.dropped);
+      } catch (const Error& e) {
+        throw Error(bag_.where() + ": " + e.what());
+      }
+      for (auto& scan : done) {
+        if (scan.frame_id.empty()) scan.frame_id = packet_scan_.frame_id;
+        pushScan(std::move(scan));
+      }
+    } else if (is_points) {
       bag_.readPointCloud(cloud_);
       Scan scan;
       try {
@@ -83,8 +113,7 @@ class RosbagReader final : public LogReader {
       } catch (const Error& e) {
         throw Error(bag_.where() + ": " + e.what());
       }
-      checkClocks(scan.stamp_ns + offset_ns_, true);
-      sequencer_.push(std::move(scan));
+      pushScan(std::move(scan));
     } else {
       const ImuMessage imu = bag_.readImu();
       if (!imu.has_gyro || !imu.has_accel) {
@@ -95,6 +124,12 @@ class RosbagReader final : public LogReader {
       sequencer_.push(imu.sample);
     }
     return true;
+  }
+
+  /// `check_clock`: a message is current (its record time is known).
+  void pushScan(Scan&& scan, bool check_clock = true) {
+    if (check_clock) checkClocks(scan.stamp_ns + offset_ns_, true);
+    sequencer_.push(std::move(scan));
   }
 
   /// Warns once when the two streams' stamps run on clearly different clocks.
@@ -113,8 +148,11 @@ class RosbagReader final : public LogReader {
     }
   }
 
-  RosbagFile bag_;
+  std::unique_ptr<RosMessageSource> source_;
+  RosMessageSource& bag_;
   TopicChoice topics_;
+  std::unique_ptr<VelodyneScanDecoder> packets_;  ///< when the LiDAR topic holds packets
+  VelodyneScanMessage packet_scan_;               ///< reused between messages
   PointCloudToScan clouds_;
   LogReadStats stats_;
   MessageSequencer sequencer_;
@@ -130,9 +168,19 @@ class RosbagReader final : public LogReader {
 
 }  // namespace
 
+std::unique_ptr<LogReader> openRosLog(std::unique_ptr<RosMessageSource> source,
+                                      const InputConfig& input, const SensorConfig& sensor) {
+  return std::make_unique<RosLogReader>(std::move(source), input, sensor);
+}
+
 std::unique_ptr<LogReader> openRosbagLog(const std::string& path, const InputConfig& input,
                                          const SensorConfig& sensor) {
-  return std::make_unique<RosbagReader>(path, input, sensor);
+  return openRosLog(std::make_unique<RosbagFile>(path), input, sensor);
+}
+
+std::unique_ptr<LogReader> openRos2Log(const std::string& path, const InputConfig& input,
+                                       const SensorConfig& sensor) {
+  return openRosLog(openRos2Bag(path), input, sensor);
 }
 
 }  // namespace storey

@@ -8,6 +8,7 @@
 #include <cstring>
 
 #include "common/error.h"
+#include "io/ros_message_codec.h"
 
 namespace storey::sim {
 
@@ -15,8 +16,57 @@ struct BagWriter::Impl {
   rosbag::Bag bag;
   std::uint32_t scan_seq = 0;
   std::uint32_t imu_seq = 0;
+  std::uint32_t packet_seq = 0;
 };
 
+namespace {
+
+/// A velodyne_msgs/VelodyneScan already serialized (io/ros_message_codec.h):
+/// librosbag writes its bytes as they are, under the type's name, MD5 and definition.
+struct RawVelodyneScan {
+  std::vector<std::uint8_t> bytes;
+};
+
+}  // namespace
+}  // namespace storey::sim
+
+namespace ros {
+namespace message_traits {
+template <>
+struct MD5Sum<storey::sim::RawVelodyneScan> {
+  // md5 of the type's text with nested types replaced by their MD5s (ROS 1's rule).
+  static const char* value() { return "50804fc9533a0e579e6322c04ae70566"; }
+  static const char* value(const storey::sim::RawVelodyneScan&) { return value(); }
+};
+template <>
+struct DataType<storey::sim::RawVelodyneScan> {
+  static const char* value() { return "velodyne_msgs/VelodyneScan"; }
+  static const char* value(const storey::sim::RawVelodyneScan&) { return value(); }
+};
+template <>
+struct Definition<storey::sim::RawVelodyneScan> {
+  static const char* value() {
+    return storey::rosMessageDefinition(storey::kVelodyneScanType, storey::WireFormat::kRos1);
+  }
+  static const char* value(const storey::sim::RawVelodyneScan&) { return value(); }
+};
+}  // namespace message_traits
+namespace serialization {
+template <>
+struct Serializer<storey::sim::RawVelodyneScan> {
+  template <typename Stream>
+  static void write(Stream& stream, const storey::sim::RawVelodyneScan& m) {
+    std::memcpy(stream.advance(static_cast<std::uint32_t>(m.bytes.size())), m.bytes.data(),
+                m.bytes.size());
+  }
+  static std::uint32_t serializedLength(const storey::sim::RawVelodyneScan& m) {
+    return static_cast<std::uint32_t>(m.bytes.size());
+  }
+};
+}  // namespace serialization
+}  // namespace ros
+
+namespace storey::sim {
 namespace {
 
 ros::Time rosTime(std::int64_t ns) {
@@ -66,71 +116,37 @@ BagWriter::~BagWriter() {
   }
 }
 
-void BagWriter::writeScan(const std::string& topic, const Scan& scan, std::int64_t receipt_ns) {
-  constexpr std::uint32_t kStep = 32;
+void BagWriter::writeCloud(const std::string& topic, const PointCloudMessage& cloud,
+                           std::int64_t receipt_ns) {
   sensor_msgs::PointCloud2 msg;
   msg.header.seq = impl_->scan_seq++;
-  msg.header.stamp = rosTime(scan.stamp_ns);
-  msg.header.frame_id = scan.frame_id;
-  msg.height = 1;
-  msg.width = static_cast<std::uint32_t>(scan.points.size());
-  msg.fields = {field("x", 0, sensor_msgs::PointField::FLOAT32),
-                field("y", 4, sensor_msgs::PointField::FLOAT32),
-                field("z", 8, sensor_msgs::PointField::FLOAT32),
-                field("intensity", 16, sensor_msgs::PointField::FLOAT32),
-                field("ring", 20, sensor_msgs::PointField::UINT16),
-                field("time", 24, sensor_msgs::PointField::FLOAT32)};
-  msg.is_bigendian = false;
-  msg.point_step = kStep;
-  msg.row_step = kStep * msg.width;
-  msg.is_dense = true;
-  msg.data.assign(static_cast<std::size_t>(msg.row_step), 0);  // padding bytes are zero
-  std::uint8_t* out = msg.data.data();
-  for (const ScanPoint& p : scan.points) {
-    std::memcpy(out + 0, &p.p.x(), 4);
-    std::memcpy(out + 4, &p.p.y(), 4);
-    std::memcpy(out + 8, &p.p.z(), 4);
-    std::memcpy(out + 16, &p.intensity, 4);
-    std::memcpy(out + 20, &p.ring, 2);
-    std::memcpy(out + 24, &p.time, 4);
-    out += kStep;
-  }
+  msg.header.stamp = rosTime(cloud.stamp_ns);
+  msg.header.frame_id = cloud.frame_id;
+  msg.height = cloud.height;
+  msg.width = cloud.width;
+  for (const auto& f : cloud.fields) msg.fields.push_back(field(f.name, f.offset, f.datatype));
+  msg.is_bigendian = cloud.is_bigendian;
+  msg.point_step = cloud.point_step;
+  msg.row_step = cloud.row_step;
+  msg.is_dense = cloud.is_dense;
+  msg.data = cloud.data;
   writeMessage(impl_->bag, path_, topic, receipt_ns, msg, "a point cloud");
+}
+
+void BagWriter::writeScan(const std::string& topic, const Scan& scan, std::int64_t receipt_ns) {
+  writeCloud(topic, velodyneLayoutCloud(scan), receipt_ns);
 }
 
 void BagWriter::writeOrganisedScan(const std::string& topic, const std::string& frame_id,
                                    const OrganisedScan& scan, std::int64_t stamp_ns,
                                    std::int64_t receipt_ns) {
-  sensor_msgs::PointCloud2 msg;
-  msg.header.seq = impl_->scan_seq++;
-  msg.header.stamp = rosTime(stamp_ns);
-  msg.header.frame_id = frame_id;
-  msg.height = static_cast<std::uint32_t>(scan.rows);
-  msg.width = static_cast<std::uint32_t>(scan.columns);
-  for (const CloudField& f : kOusterFields)
-    msg.fields.push_back(field(f.name, f.offset, f.datatype));
-  msg.is_bigendian = false;
-  msg.point_step = kOusterPointStep;
-  msg.row_step = kOusterPointStep * msg.width;
-  msg.is_dense = true;
-  msg.data.assign(static_cast<std::size_t>(msg.row_step) * msg.height, 0);
-  std::uint8_t* out = msg.data.data();
-  for (int row = 0; row < scan.rows; ++row) {
-    const std::uint16_t ring = static_cast<std::uint16_t>(row);
-    for (int column = 0; column < scan.columns; ++column) {
-      const OrganisedPoint& p = scan.at(row, column);
-      std::memcpy(out + 0, &p.p.x(), 4);
-      std::memcpy(out + 4, &p.p.y(), 4);
-      std::memcpy(out + 8, &p.p.z(), 4);
-      std::memcpy(out + 16, &p.intensity, 4);
-      std::memcpy(out + 20, &p.t_ns, 4);
-      std::memcpy(out + 24, &p.reflectivity, 2);
-      std::memcpy(out + 26, &ring, 2);
-      std::memcpy(out + 32, &p.range_mm, 4);  // ambient (28) stays 0: no sunlight indoors
-      out += kOusterPointStep;
-    }
-  }
-  writeMessage(impl_->bag, path_, topic, receipt_ns, msg, "a point cloud");
+  writeCloud(topic, ousterLayoutCloud(scan, frame_id, stamp_ns), receipt_ns);
+}
+
+void BagWriter::writeVelodyneScan(const std::string& topic, const VelodyneScanMessage& scan,
+                                  std::int64_t receipt_ns) {
+  const RawVelodyneScan raw{encodeVelodyneScan(scan, WireFormat::kRos1, impl_->packet_seq++)};
+  writeMessage(impl_->bag, path_, topic, receipt_ns, raw, "a VelodyneScan");
 }
 
 void BagWriter::writeImu(const std::string& topic, const std::string& frame_id,

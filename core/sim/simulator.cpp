@@ -22,6 +22,8 @@
 #include "sim/imu_csv_writer.h"
 #include "sim/imu_simulator.h"
 #include "sim/lidar_simulator.h"
+#include "sim/ros2_bag_writer.h"
+#include "sim/velodyne_packet_builder.h"
 #include "sim/velodyne_pcap_writer.h"
 #include "sim/world.h"
 
@@ -70,7 +72,7 @@ void writeStoreys(const std::string& path, const BuildingSpec& spec, const Build
 
 /// The true sensor set-up. With perfect sensors the spec's noise is still
 /// reported: a pipeline needs non-zero weights.
-void writeCalibration(const std::string& path, const BuildingSpec& spec) {
+void writeCalibration(const std::string& path, const BuildingSpec& spec, bool packets) {
   Calibration calibration;
   const SensorsSpec& s = spec.sensors;
   calibration.sensor.T_imu_lidar = s.T_body_imu.inverse() * s.T_body_lidar;
@@ -82,7 +84,7 @@ void writeCalibration(const std::string& path, const BuildingSpec& spec) {
   calibration.sensor.imu.accel_noise_density = s.imu.accel_noise_density;
   calibration.sensor.imu.gyro_random_walk = s.imu.gyro_random_walk;
   calibration.sensor.imu.accel_random_walk = s.imu.accel_random_walk;
-  calibration.points_topic = s.points_topic;
+  calibration.points_topic = packets ? kPacketsTopic : s.points_topic;
   calibration.imu_topic = s.imu_topic;
   writeCalibrationFile(calibration, path);
 }
@@ -145,13 +147,17 @@ SimulationResult simulate(const BuildingSpec& spec, const SimulationOptions& opt
   const auto wall_start = std::chrono::steady_clock::now();
   spec.validate();
   if (out_dir.empty()) throw Error("simulator: no output folder given");
-  if (!options.formats.bag && !options.formats.pcap)
-    throw Error("simulator: no log format chosen (a bag, a pcap or both)");
-  if (options.formats.pcap && !velodyneModel(spec.sensors.lidar.model)) {
-    throw Error(spec.source +
-                ": a Velodyne capture (pcap) needs a Velodyne LiDAR (VLP-16, VLP-32C, HDL-32E); "
-                "sensors.lidar.model is " +
+  const SimulationFormats& formats = options.formats;
+  if (!formats.bag && !formats.pcap && formats.ros2 == Ros2Format::kNone)
+    throw Error("simulator: no log format chosen (a ROS1 bag, a ROS 2 bag or a pcap)");
+  if ((formats.pcap || formats.packets) && !velodyneModel(spec.sensors.lidar.model)) {
+    throw Error(spec.source + ": " +
+                (formats.pcap ? "a Velodyne capture (pcap)" : "Velodyne packets (--packets)") +
+                " needs a Velodyne LiDAR (VLP-16, VLP-32C, HDL-32E); sensors.lidar.model is " +
                 toString(spec.sensors.lidar.model));
+  }
+  if (formats.packets && !formats.bag && formats.ros2 == Ros2Format::kNone) {
+    throw Error("simulator: Velodyne packets go into a bag: write a ROS1 or a ROS 2 bag");
   }
   report(progress, 0.0, "building");
   const World world = makeWorld(spec);
@@ -172,7 +178,7 @@ SimulationResult simulate(const BuildingSpec& spec, const SimulationOptions& opt
   StagingDir staging(out_dir);
   world.building.mesh.writePly(staging.file(kMeshFile));
   writeStoreys(staging.file(kStoreysFile), spec, world.building);
-  writeCalibration(staging.file(kCalibrationFile), spec);
+  writeCalibration(staging.file(kCalibrationFile), spec, formats.packets);
   writeFileAtomically(staging.file(kSpecFile), buildingSpecYaml(spec));
 
   report(progress, 0.0, "IMU");
@@ -203,10 +209,30 @@ SimulationResult simulate(const BuildingSpec& spec, const SimulationOptions& opt
              "), the clock of " + std::string(kPcapFile),
          "time [s]; gyro [rad/s]; accel [m/s^2] (specific force, +g up at rest); IMU frame"});
   }
-  std::unique_ptr<BagWriter> bag;
-  if (options.formats.bag) {
-    bag = std::make_unique<BagWriter>(
-        staging.file(kBagFile), options.compress ? BagCompression::kLz4 : BagCompression::kNone);
+  std::vector<std::unique_ptr<SimLogWriter>> logs;
+  if (formats.bag) {
+    logs.push_back(std::make_unique<BagWriter>(
+        staging.file(kBagFile), options.compress ? BagCompression::kLz4 : BagCompression::kNone));
+  }
+  if (formats.ros2 != Ros2Format::kNone) {
+    McapWriterOptions mcap;
+    mcap.compression = formats.mcap_compression;
+    logs.push_back(std::make_unique<Ros2BagWriter>(
+        staging.file(kRos2BagDir),
+        formats.ros2 == Ros2Format::kDb3 ? Ros2Storage::kSqlite3 : Ros2Storage::kMcap, mcap));
+  }
+  const bool bag = !logs.empty();
+  // Packets for the bags: VelodyneScan messages of one revolution's packets
+  // each, stamped (and recorded) at their last packet, as the ROS drivers do.
+  std::unique_ptr<VelodynePacketBuilder> packets;
+  VelodyneScanMessage packet_message;
+  std::size_t packets_per_message = 0;
+  if (formats.packets) {
+    packets = std::make_unique<VelodynePacketBuilder>(
+        start_ns, sensors.lidar.rotation_rate, *velodyneModel(sensors.lidar.model), kPacketsTopic);
+    packets_per_message =
+        static_cast<std::size_t>(std::ceil(packets->packetRate() / sensors.lidar.rotation_rate));
+    packet_message.frame_id = sensors.lidar_frame_id;
   }
   std::unique_ptr<VelodynePcapWriter> pcap;
   if (options.formats.pcap) {
@@ -227,9 +253,27 @@ SimulationResult simulate(const BuildingSpec& spec, const SimulationOptions& opt
       }
       ImuSample sample = imu.samples[next_imu++];
       sample.stamp_ns += start_ns;
-      bag->writeImu(sensors.imu_topic, sensors.imu_frame_id, sample, gyro_variance, accel_variance,
-                    sensors.imu.orientation ? &orientation : nullptr);
+      for (auto& log : logs) {
+        log->writeImu(sensors.imu_topic, sensors.imu_frame_id, sample, gyro_variance,
+                      accel_variance, sensors.imu.orientation ? &orientation : nullptr);
+      }
     }
+  };
+  auto writePacketMessage = [&]() {
+    if (packet_message.packets.empty()) return;
+    packet_message.stamp_ns = packet_message.packets.back().stamp_ns;
+    writeImuUntil(packet_message.stamp_ns - start_ns);
+    for (auto& log : logs) {
+      log->writeVelodyneScan(kPacketsTopic, packet_message, packet_message.stamp_ns);
+    }
+    packet_message.packets.clear();
+  };
+  auto addPacket = [&](const BuiltPacket& built) {
+    VelodynePacketMessage packet;
+    packet.stamp_ns = built.complete_ns;
+    packet.data = built.payload;
+    packet_message.packets.push_back(packet);
+    if (packet_message.packets.size() >= packets_per_message) writePacketMessage();
   };
 
   std::ostringstream lidar_truth;
@@ -245,9 +289,9 @@ SimulationResult simulate(const BuildingSpec& spec, const SimulationOptions& opt
     std::vector<std::vector<VelodyneFiring>> firings;  ///< per scan, for the pcap
     std::vector<OrganisedScan> organised;              ///< per scan, Ouster layout
   };
-  const bool want_firings = pcap != nullptr;
+  const bool want_firings = pcap != nullptr || packets != nullptr;
   const bool organised = lidar.beams().layout == CloudLayout::kOuster;
-  const bool want_organised = organised && bag != nullptr;
+  const bool want_organised = organised && bag && !packets;
   auto castChunk = [&](int first) {
     Chunk out;
     const auto size = static_cast<std::size_t>(std::max(0, std::min(chunk, scan_count - first)));
@@ -278,30 +322,48 @@ SimulationResult simulate(const BuildingSpec& spec, const SimulationOptions& opt
                    trajectory.frame(scan.stamp_ns * 1e-9, sensors.T_body_lidar).T_world_frame);
       result.points += static_cast<std::int64_t>(scan.points.size());
       scan.stamp_ns += start_ns;
-      if (bag && organised) {
-        bag->writeOrganisedScan(sensors.points_topic, scan.frame_id, cast.organised[i],
-                                scan.stamp_ns, start_ns + receipt_ns);
-      } else if (bag) {
-        bag->writeScan(sensors.points_topic, scan, start_ns + receipt_ns);
+      for (auto& log : logs) {
+        if (packets) break;
+        if (organised) {
+          log->writeOrganisedScan(sensors.points_topic, scan.frame_id, cast.organised[i],
+                                  scan.stamp_ns, start_ns + receipt_ns);
+        } else {
+          log->writeScan(sensors.points_topic, scan, start_ns + receipt_ns);
+        }
       }
       if (pcap) {
         for (const VelodyneFiring& firing : cast.firings[i]) pcap->add(firing);
       }
+      if (packets) {
+        BuiltPacket built;
+        for (const VelodyneFiring& firing : cast.firings[i]) {
+          if (packets->add(firing, built)) addPacket(built);
+        }
+      }
     }
+  }
+  if (packets) {
+    BuiltPacket built;
+    if (packets->finish(built)) addPacket(built);
+    writePacketMessage();
   }
   writeImuUntil(INT64_MAX / 2);
   report(progress, 1.0, bag ? "writing the bag" : "writing the capture");
-  if (bag) bag->close();
+  for (auto& log : logs) log->close();
   if (pcap) {
     pcap->close();
     result.pcap_packets = pcap->packets();
+  }
+  if (pcap || packets) {
+    const std::vector<std::int64_t>& frame_starts =
+        pcap ? pcap->frameStarts() : packets->frameStarts();
     // The capture's frames start where the azimuth wraps, half a revolution
     // away from the bag's scans: their own ground truth, at their stamps.
     writeFileAtomically(staging.file(kPcapLidarTruthFile), [&](std::ostream& out) {
       out << "# timestamp x y z qx qy qz qw (LiDAR frame in the world frame, at the stamp of each "
              "frame of "
           << kPcapFile << ")\n";
-      for (const std::int64_t t_ns : pcap->frameStarts()) {
+      for (const std::int64_t t_ns : frame_starts) {
         writeTumLine(
             out, t_ns,
             trajectory.frame((t_ns - start_ns) * 1e-9, sensors.T_body_lidar).T_world_frame);

@@ -11,14 +11,20 @@
 
 #include "common/progress.h"
 #include "sim/building_spec.h"
+#include "sim/mcap_writer.h"
 
 namespace storey::sim {
 
 /// File names inside the output folder.
 inline constexpr const char* kBagFile = "simulation.bag";
+/// ROS 2 bag folder (formats.ros2): metadata.yaml + simulation_ros2_0.db3 or .mcap.
+inline constexpr const char* kRos2BagDir = "simulation_ros2";
+/// The LiDAR topic when it carries packets (formats.packets).
+inline constexpr const char* kPacketsTopic = "/velodyne_packets";
 inline constexpr const char* kPcapFile = "simulation.pcap";  ///< Velodyne capture (formats.pcap)
 inline constexpr const char* kImuCsvFile = "imu.csv";        ///< its IMU (formats.pcap)
 /// LiDAR ground truth at the stamps of the capture's frames (formats.pcap).
+/// Also the ground truth of the frames of VelodyneScan packets (formats.packets).
 inline constexpr const char* kPcapLidarTruthFile = "groundtruth_lidar_pcap.tum";
 inline constexpr const char* kLidarTruthFile = "groundtruth_lidar.tum";
 inline constexpr const char* kImuTruthFile = "groundtruth_imu.tum";
@@ -28,11 +34,18 @@ inline constexpr const char* kCalibrationFile = "calibration.yaml";
 /// The spec simulated (every key): `storey simulate spec.yaml` reproduces the folder.
 inline constexpr const char* kSpecFile = "spec.yaml";
 
+enum class Ros2Format { kNone, kDb3, kMcap };
+
 /// Which logs to write (at least one).
 struct SimulationFormats {
   bool bag = true;    ///< simulation.bag: ROS1 bag with the point clouds and the IMU
   bool pcap = false;  ///< simulation.pcap + imu.csv: the Velodyne LiDAR's UDP packets as VeloView
                       ///< records them, and the IMU
+  Ros2Format ros2 = Ros2Format::kNone;  ///< simulation_ros2/: a ROS 2 bag (CDR messages)
+  McapCompression mcap_compression = McapCompression::kZstd;  ///< MCAP chunks
+  /// The LiDAR as velodyne_msgs/VelodyneScan packets on kPacketsTopic (in the
+  /// ROS1 and ROS 2 bags) instead of point clouds; Velodyne models only.
+  bool packets = false;
 };
 
 struct SimulationOptions {

@@ -12,26 +12,9 @@ namespace {
 
 namespace vd = velodyne;
 
-constexpr std::size_t kBlockSize = 100;
 constexpr std::size_t kEthernetHeader = 14, kIpv4Header = 20, kUdpHeader = 8;
 constexpr std::size_t kPayloadOffset = kEthernetHeader + kIpv4Header + kUdpHeader;
 constexpr std::size_t kFrameSize = kPayloadOffset + vd::kDataPacketSize;  // 1248
-constexpr std::int64_t kHourUs = 3'600'000'000LL;
-static_assert(VelodyneFiring::kMaxLasers == vd::kChannelsPerBlock, "block layout");
-static_assert(4 + 3 * vd::kChannelsPerBlock == kBlockSize, "block size");
-
-std::uint8_t productId(vd::Model model) {
-  switch (model) {
-    case vd::Model::kVlp16:
-      return vd::kProductVlp16;
-    case vd::Model::kVlp32c:
-      return vd::kProductVlp32c;
-    case vd::Model::kHdl32e:
-      return vd::kProductHdl32e;
-  }
-  return vd::kProductVlp16;
-}
-static_assert(vd::kBlocksPerPacket * kBlockSize + 6 == vd::kDataPacketSize, "packet size");
 
 void put16be(std::uint8_t* p, std::uint16_t v) {
   p[0] = static_cast<std::uint8_t>(v >> 8);
@@ -43,18 +26,6 @@ void put16le(std::uint8_t* p, std::uint16_t v) {
 }
 void put32le(std::uint8_t* p, std::uint32_t v) {
   for (int k = 0; k < 4; ++k) p[k] = static_cast<std::uint8_t>(v >> (8 * k));
-}
-
-/// Integer division rounding to nearest (halves up), for non-negative and negative n.
-std::int64_t roundDiv(std::int64_t n, std::int64_t d) {
-  return n >= 0 ? (n + d / 2) / d : -((-n + d / 2) / d);
-}
-
-/// Azimuth in the packet's unit, 0..35999 [0.01 deg].
-std::uint16_t azimuthField(double azimuth_deg) {
-  long a = std::lround(azimuth_deg * 100.0) % 36000;
-  if (a < 0) a += 36000;
-  return static_cast<std::uint16_t>(a);
 }
 
 /// The Ethernet + IPv4 + UDP headers of a VLP-16 data packet (the checksum
@@ -95,17 +66,10 @@ void setIpv4IdAndChecksum(std::uint8_t* ip, std::uint16_t id) {
 
 VelodynePcapWriter::VelodynePcapWriter(const std::string& path, std::int64_t start_ns,
                                        double rotation_hz, velodyne::Model model)
-    : path_(path),
-      start_ns_(start_ns),
-      rotation_hz_(rotation_hz),
-      model_(model),
-      lasers_(vd::laserCount(model)),
-      sequences_per_block_(vd::kChannelsPerBlock / vd::laserCount(model)),
-      period_ns_(std::llround(vd::sequencePeriod(model) * 1e9)) {
+    : path_(path), builder_(start_ns, rotation_hz, model, path) {
   file_ = std::fopen(path.c_str(), "wb");
   if (file_ == nullptr) throw Error(path + ": cannot open for writing: " + std::strerror(errno));
   std::setvbuf(file_, nullptr, _IOFBF, 1 << 20);
-  pending_.reserve(vd::kBlocksPerPacket * sequences_per_block_);
   initFrame(frame_);
   // Classic pcap header: little-endian, microsecond stamps, version 2.4, Ethernet.
   std::uint8_t header[24] = {};
@@ -129,51 +93,14 @@ void VelodynePcapWriter::writeBytes(const void* data, std::size_t size) {
 
 void VelodynePcapWriter::add(const VelodyneFiring& sequence) {
   if (file_ == nullptr) throw Error(path_ + ": the capture is already closed");
-  if (have_last_ && sequence.t_ns != last_.t_ns + period_ns_) {
-    throw Error(path_ + ": firing sequence at " + std::to_string(sequence.t_ns) +
-                " ns does not follow the one at " + std::to_string(last_.t_ns) + " ns by the " +
-                vd::toString(model_) + "'s period of " + std::to_string(period_ns_) + " ns");
-  }
-  last_ = sequence;
-  have_last_ = true;
-  pending_.push_back(sequence);
-  real_sequences_ = static_cast<int>(pending_.size());
-  if (real_sequences_ == vd::kBlocksPerPacket * sequences_per_block_) writePacket();
+  if (builder_.add(sequence, packet_)) writePacket();
 }
 
 void VelodynePcapWriter::writePacket() {
-  std::uint8_t* payload = frame_.data() + kPayloadOffset;
-  for (int b = 0; b < vd::kBlocksPerPacket; ++b) {
-    std::uint8_t* block = payload + b * kBlockSize;
-    put16le(block, vd::kBlockFlag);              // bytes 0xFF 0xEE
-    const int first = sequences_per_block_ * b;  // the block's first sequence
-    const std::uint16_t azimuth = azimuthField(pending_[first].azimuth_deg);
-    put16le(block + 2, azimuth);
-    if ((azimuth < last_block_azimuth_ || last_block_azimuth_ < 0) && first < real_sequences_) {
-      frame_starts_.push_back(start_ns_ + pending_[first].t_ns);
-    }
-    last_block_azimuth_ = azimuth;
-    for (int s = 0; s < sequences_per_block_; ++s) {
-      const VelodyneFiring& q = pending_[first + s];
-      for (int laser = 0; laser < lasers_; ++laser) {
-        std::uint8_t* cell = block + 4 + 3 * (s * lasers_ + laser);
-        put16le(cell, q.distance[laser]);
-        cell[2] = q.reflectivity[laser];
-      }
-    }
-  }
-  // Timestamp: microseconds past the hour of the first firing of block 0.
-  const std::int64_t first_ns = start_ns_ + pending_.front().t_ns;
-  std::int64_t toh_us = roundDiv(first_ns, 1000) % kHourUs;
-  if (toh_us < 0) toh_us += kHourUs;
-  put32le(payload + 1200, static_cast<std::uint32_t>(toh_us));
-  payload[1204] = static_cast<std::uint8_t>(vd::ReturnMode::kStrongest);  // 0x37
-  payload[1205] = productId(model_);
+  std::memcpy(frame_.data() + kPayloadOffset, packet_.payload.data(), packet_.payload.size());
   setIpv4IdAndChecksum(frame_.data() + kEthernetHeader, ip_id_++);
-
   // Record: the packet is complete after its sequences.
-  const std::int64_t record_us =
-      roundDiv(first_ns + vd::kBlocksPerPacket * sequences_per_block_ * period_ns_, 1000);
+  const std::int64_t record_us = packet_.complete_ns / 1000;
   std::uint8_t record[16];
   put32le(record, static_cast<std::uint32_t>(record_us / 1'000'000));
   put32le(record + 4, static_cast<std::uint32_t>(record_us % 1'000'000));
@@ -181,25 +108,11 @@ void VelodynePcapWriter::writePacket() {
   put32le(record + 12, static_cast<std::uint32_t>(kFrameSize));
   writeBytes(record, sizeof(record));
   writeBytes(frame_.data(), frame_.size());
-  ++packets_;
-  pending_.clear();
-  real_sequences_ = 0;
 }
 
 void VelodynePcapWriter::close() {
   if (file_ == nullptr) return;
-  if (!pending_.empty()) {
-    // The sensor keeps spinning: complete the packet with sequences without returns.
-    const double step_deg = 360.0 * rotation_hz_ * period_ns_ * 1e-9;
-    while (static_cast<int>(pending_.size()) < vd::kBlocksPerPacket * sequences_per_block_) {
-      VelodyneFiring next;
-      next.t_ns = last_.t_ns + period_ns_;
-      next.azimuth_deg = std::fmod(last_.azimuth_deg + step_deg, 360.0);
-      last_ = next;
-      pending_.push_back(next);
-    }
-    writePacket();
-  }
+  if (builder_.finish(packet_)) writePacket();
   const bool flushed = std::fflush(file_) == 0;
   const bool closed = std::fclose(file_) == 0;
   file_ = nullptr;

@@ -25,6 +25,7 @@
 
 #include "io/velodyne/velodyne_tables.h"
 #include "sim/velodyne_firing.h"
+#include "sim/velodyne_packet_builder.h"
 
 namespace storey::sim {
 
@@ -48,12 +49,9 @@ class VelodynePcapWriter {
   /// Throws storey::Error when the file could not be written.
   void close();
 
-  std::int64_t packets() const { return packets_; }
-  /// Absolute times of the first firing of the blocks that start a frame
-  /// when the capture is read as VeloView (and Storey's reader) cut it: the
-  /// first block, then every block whose azimuth is smaller than the
-  /// previous block's [ns]. Blocks of the sequences close() adds are left out.
-  const std::vector<std::int64_t>& frameStarts() const { return frame_starts_; }
+  std::int64_t packets() const { return builder_.packets(); }
+  /// The frame starts of the packets written (VelodynePacketBuilder::frameStarts).
+  const std::vector<std::int64_t>& frameStarts() const { return builder_.frameStarts(); }
   std::uint64_t bytes() const { return bytes_; }
 
  private:
@@ -62,20 +60,9 @@ class VelodynePcapWriter {
 
   std::string path_;
   std::FILE* file_ = nullptr;
-  std::int64_t start_ns_;
-  double rotation_hz_;
-  velodyne::Model model_;
-  int lasers_;                           ///< per firing sequence
-  int sequences_per_block_;              ///< 2 (VLP-16) or 1
-  std::int64_t period_ns_;               ///< between firing sequences
-  std::vector<VelodyneFiring> pending_;  ///< sequences of the packet being filled
-  std::vector<std::uint8_t> frame_;      ///< link-layer frame buffer
-  bool have_last_ = false;
-  VelodyneFiring last_;
-  std::int64_t packets_ = 0;
-  int real_sequences_ = 0;  ///< of pending_, the ones added (not filling up the last packet)
-  int last_block_azimuth_ = -1;
-  std::vector<std::int64_t> frame_starts_;
+  VelodynePacketBuilder builder_;
+  BuiltPacket packet_;
+  std::vector<std::uint8_t> frame_;  ///< link-layer frame buffer
   std::uint64_t bytes_ = 0;
   std::uint16_t ip_id_ = 0;
 };

@@ -17,6 +17,7 @@
 #include "RunDialog.h"
 #include "common/error.h"
 #include "common/progress.h"
+#include "io/log_format.h"
 
 namespace storey::plugin {
 
@@ -46,9 +47,11 @@ ActionRun::~ActionRun() {
 void ActionRun::chooseAndRun(ccMainAppInterface* app) {
   if (app == nullptr || job_) return;
   QWidget* parent = app->getMainWindow();
-  const QString log = QFileDialog::getOpenFileName(parent, "Storey: LiDAR + IMU log", QString(),
-                                                   "Logs (*.bag *.pcap *.pcapng);;All files (*)");
-  if (log.isEmpty()) return;
+  // A rosbag2 folder is chosen by its metadata.yaml, a PCD folder by one of its scans.
+  const QString chosen = QFileDialog::getOpenFileName(parent, "Storey: LiDAR + IMU log", QString(),
+                                                      kLogFileDialogFilter);
+  if (chosen.isEmpty()) return;
+  const QString log = QString::fromStdString(logPathForChosenFile(chosen.toStdString()));
   RunDialog dialog(log, parent);
   if (dialog.exec() != QDialog::Accepted) return;
   start(app, dialog.request(), dialog.config());

@@ -13,6 +13,7 @@
 #include <QVBoxLayout>
 
 #include "common/error.h"
+#include "io/log_format.h"
 
 namespace storey::plugin {
 
@@ -40,7 +41,8 @@ RunDialog::RunDialog(const QString& log_path, QWidget* parent) : QDialog(parent)
     row->addWidget(button);
     form->addRow(label, row);
   };
-  fileRow(log_, "Log:", "ROS1 bag, Velodyne pcap or PCD folder", "LiDAR + IMU log", false);
+  fileRow(log_, "Log:", "ROS1/ROS 2 bag, MCAP, Velodyne pcap or PCD folder", "LiDAR + IMU log",
+          false);
   fileRow(config_file_, "Config file:", "optional: built-in defaults",
           "Storey configuration (YAML)", false);
   fileRow(calibration_, "Calibration:", "optional: calibration.yaml beside the log, if any",
@@ -104,8 +106,16 @@ RunDialog::RunDialog(const QString& log_path, QWidget* parent) : QDialog(parent)
 }
 
 void RunDialog::browse(QLineEdit* edit, const QString& title, bool folder) {
-  const QString path = folder ? QFileDialog::getExistingDirectory(this, title, edit->text())
-                              : QFileDialog::getOpenFileName(this, title, edit->text());
+  QString path;
+  if (folder) {
+    path = QFileDialog::getExistingDirectory(this, title, edit->text());
+  } else if (edit == log_) {
+    // A rosbag2 folder is chosen by its metadata.yaml, a PCD folder by one of its scans.
+    path = QFileDialog::getOpenFileName(this, title, edit->text(), kLogFileDialogFilter);
+    if (!path.isEmpty()) path = QString::fromStdString(logPathForChosenFile(path.toStdString()));
+  } else {
+    path = QFileDialog::getOpenFileName(this, title, edit->text());
+  }
   if (path.isEmpty()) return;
   edit->setText(path);
   reload();

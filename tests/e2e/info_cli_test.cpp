@@ -79,7 +79,7 @@ TEST_F(InfoCli, VelodyneBagTable) {
   EXPECT_TRUE(hasRow(r.out, {"ring", "uint16", "20", "1"}));
   EXPECT_TRUE(hasRow(r.out, {"time", "float32", "24", "1"}));
   EXPECT_TRUE(
-      contains(r.out, "Storey reads point clouds from /velodyne_points and IMU from /imu/data"));
+      contains(r.out, "Storey reads the LiDAR from /velodyne_points and IMU from /imu/data"));
 }
 
 TEST_F(InfoCli, BadFilesExitOneWithAOneLineMessage) {

@@ -11,6 +11,7 @@
 #include "io/imu_csv.h"
 #include "io/message_sequencer.h"
 #include "io/velodyne/frame_assembler.h"
+#include "io/velodyne/packet_model.h"
 #include "io/velodyne/pcap_file.h"
 
 namespace storey {
@@ -18,8 +19,6 @@ namespace {
 
 using velodyne::Model;
 
-constexpr std::int64_t kHourNs = 3'600'000'000'000LL;
-constexpr std::int64_t kHalfHourNs = kHourNs / 2;
 constexpr int kProbeDataPackets = 400;
 constexpr int kProbeRecords = 5000;
 constexpr double kDegToRad = 3.14159265358979323846 / 180.0;
@@ -28,20 +27,6 @@ constexpr double kStandardGravity = 9.80665;
 constexpr std::int64_t kCsvLeadNs = 200'000'000;
 /// IMU CSV samples earlier than the first scan by more than this are skipped [ns].
 constexpr std::int64_t kCsvBeforeLogNs = 2'000'000'000;
-
-std::string hex2(std::uint8_t v) {
-  char text[8];
-  std::snprintf(text, sizeof(text), "0x%02X", v);
-  return text;
-}
-
-/// Time spanned by one data packet of `model` [s].
-double packetPeriod(Model model, bool dual) {
-  const int sequences_per_block = model == Model::kVlp16 ? 2 : 1;
-  const double single =
-      velodyne::kBlocksPerPacket * sequences_per_block * velodyne::sequencePeriod(model);
-  return dual ? single / 2 : single;
-}
 
 bool isPositionWithImu(const std::uint8_t* data, std::size_t size) {
   if (size < 38) return false;
@@ -154,44 +139,11 @@ struct VelodynePcapReader::Impl {
       std::nth_element(steps.begin(), steps.begin() + steps.size() / 2, steps.end());
       probe_.packet_period_s = steps[steps.size() / 2];
     }
-    const bool dual = probe_.return_mode == static_cast<std::uint8_t>(velodyne::ReturnMode::kDual);
-    switch (probe_.product) {
-      case velodyne::kProductVlp16:
-      case 0x24:  // VLP-16 Hi-Res (Puck Hi-Res): same packets, other elevations
-        probe_.model = Model::kVlp16;
-        probe_.model_from_product_id = true;
-        if (probe_.product == 0x24) {
-          logWarning(path_ +
-                     ": product id 0x24 (VLP-16 Hi-Res): decoded with the VLP-16 layout; "
-                     "give its laser table with input.velodyne_calibration");
-        }
-        break;
-      case velodyne::kProductVlp32c:
-        probe_.model = Model::kVlp32c;
-        probe_.model_from_product_id = true;
-        break;
-      case 0x31:
-      case 0xA1:
-      case 0x11:
-      case 0x12:
-        throw Error(path_ + ": Velodyne product id " + hex2(probe_.product) +
-                    " (VLS-128 or HDL-64E) is not supported; Storey decodes VLP-16, VLP-32C and "
-                    "HDL-32E");
-      default: {
-        // 0x21 (HDL-32E, also sent by early VLP-16 firmware) or 0x00: tell the
-        // models apart by the time one packet spans.
-        const double p = probe_.packet_period_s;
-        const double vlp = std::abs(std::log(p / packetPeriod(Model::kVlp16, dual)));
-        const double hdl = std::abs(std::log(p / packetPeriod(Model::kHdl32e, dual)));
-        probe_.model = (p > 0.0 && vlp < hdl) ? Model::kVlp16 : Model::kHdl32e;
-      }
-    }
-    if (options_.model && *options_.model != probe_.model) {
-      logWarning(path_ + ": the packets look like " + velodyne::toString(probe_.model) +
-                 " but input.velodyne_model is " + velodyne::toString(*options_.model) +
-                 "; decoding as " + velodyne::toString(*options_.model));
-      probe_.model = *options_.model;
-    }
+    const velodyne::ModelDetection detected =
+        velodyne::detectModel(probe_.product, probe_.return_mode, probe_.packet_period_s,
+                              options_.model ? &*options_.model : nullptr, path_);
+    probe_.model = detected.model;
+    probe_.model_from_product_id = detected.from_product_id;
   }
 
   void open() {
@@ -221,25 +173,9 @@ struct VelodynePcapReader::Impl {
     }
   }
 
-  /// Absolute time of a packet timestamp (microseconds past the hour) on the
-  /// sensor clock: the hour comes from the first packet's record time and is
-  /// advanced when the timestamps wrap.
+  /// Absolute time of a packet timestamp (microseconds past the hour) on the sensor clock.
   std::int64_t sensorTime(std::uint32_t toh_us, std::int64_t record_ns, bool advance) {
-    const std::int64_t toh_ns = std::int64_t{toh_us} * 1000;
-    if (!have_hour_) {
-      const double hours = std::round(static_cast<double>(record_ns - toh_ns) / kHourNs);
-      hour_base_ns_ = static_cast<std::int64_t>(hours) * kHourNs;
-      newest_ns_ = hour_base_ns_ + toh_ns;
-      have_hour_ = true;
-    }
-    std::int64_t t = hour_base_ns_ + toh_ns;
-    while (t < newest_ns_ - kHalfHourNs) t += kHourNs;
-    while (t > newest_ns_ + kHalfHourNs) t -= kHourNs;
-    if (advance && t > newest_ns_) {
-      newest_ns_ = t;
-      hour_base_ns_ = t - toh_ns;
-    }
-    return t;
+    return clock_.place(toh_us, record_ns, advance);
   }
 
   void countPacketProblem(velodyne::PacketProblem problem) {
@@ -262,8 +198,8 @@ struct VelodynePcapReader::Impl {
       velodyne::peekDataPacket(d.payload, d.size, toh, mode, product);
       std::int64_t t = 0;
       if (options_.capture_clock) {
-        t = d.record_ns -
-            static_cast<std::int64_t>(packetPeriod(decoder_->model(), mode == 0x39) * 1e9);
+        t = d.record_ns - static_cast<std::int64_t>(
+                              velodyne::packetPeriod(decoder_->model(), mode == 0x39) * 1e9);
       } else {
         t = sensorTime(toh, d.record_ns, true);
       }
@@ -502,10 +438,7 @@ struct VelodynePcapReader::Impl {
   velodyne::DataPacket decoded_;
   std::map<std::uint16_t, std::int64_t> ports_;
   bool ended_ = false;
-  // Sensor clock.
-  bool have_hour_ = false;
-  std::int64_t hour_base_ns_ = 0;
-  std::int64_t newest_ns_ = 0;
+  velodyne::HourClock clock_;  ///< sensor clock
   // Reordering.
   std::vector<HeldPacket> held_;
   std::uint64_t arrivals_ = 0;
