@@ -12,6 +12,7 @@ PACKAGES=(
   nlohmann-json3-dev libcli11-dev libyaml-cpp-dev libgtest-dev libgmock-dev
   libbenchmark-dev xvfb xauth
   cloudcompare libqt5opengl5-dev dpkg-dev
+  slurmctld slurmd slurm-client munge
 )
 
 as_root() {
