@@ -136,12 +136,12 @@ std::string submit(const std::vector<std::string>& args, const std::string& what
 }  // namespace
 
 double estimateMemoryMb(std::uint64_t bytes, double duration_s) {
-  // Peak memory follows the map (the area walked), for which the log's
-  // duration stands in, and the message buffers the scan size (bytes/s).
-  // Measured (docs/batch.md): tiny 25 s, 5 MB/s -> 317 MB; default 295 s,
-  // 5.8 MB/s -> 390 MB. Half as much again, and at least 1 GB.
+  // Peak memory of `storey run` with its renders grows with the map (the area
+  // walked), for which the log's duration stands in, and the message buffers
+  // with the scan size (bytes/s). Measured (docs/batch.md): 306 MB (25 s),
+  // 843 MB (295 s), 1197 MB (695 s), 1228 MB (1073 s). Half as much again.
   const double mb_per_s = duration_s > 0.0 ? static_cast<double>(bytes) / duration_s / 1.0e6 : 0.0;
-  return std::max(1024.0, 1.5 * (300.0 + 0.3 * duration_s + 10.0 * mb_per_s));
+  return std::max(1024.0, 1.5 * (600.0 + 0.8 * duration_s + 10.0 * mb_per_s));
 }
 
 double estimateTimeSeconds(double duration_s) {
@@ -256,7 +256,10 @@ void submitSlurm(FleetPlan& plan, const SlurmOptions& options) {
 bool slurmJobActive(const FleetPlan& plan) {
   if (plan.job_id.empty()) return false;
   const auto queued = queuedTasks(plan.job_id);
-  return !queued || !queued->empty();  // unknown counts as active
+  if (!queued)
+    throw Error("squeue -j " + plan.job_id +
+                " failed: cannot tell whether the batch's Slurm job is still running");
+  return !queued->empty();
 }
 
 bool followSlurm(const FleetPlan& plan, double poll_seconds) {

@@ -49,7 +49,8 @@ void submitSlurm(FleetPlan& plan, const SlurmOptions& options);
 /// progress line; Ctrl-C cancels the job (scancel). Returns false when stopped.
 bool followSlurm(const FleetPlan& plan, double poll_seconds);
 
-/// Whether the plan's array job still has tasks in the queue.
+/// Whether the plan's array job still has tasks in the queue; throws
+/// storey::Error when squeue fails (no controller reachable).
 bool slurmJobActive(const FleetPlan& plan);
 
 /// For every task of the plan without a final state of this submission, asks

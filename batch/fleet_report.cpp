@@ -53,7 +53,8 @@ td img { width: 180px; border: 1px solid #ddd; }
 td.status-done { color: #1a7f37; font-weight: bold; }
 td.status-failed { color: #c62828; font-weight: bold; }
 td.status-running, td.status-queued, td.status-cancelled { color: #9a6700; font-weight: bold; }
-td.error { max-width: 40em; font-family: monospace; font-size: 0.9em; }
+td.error, small.error { max-width: 40em; font-family: monospace; font-size: 0.9em; }
+small.error { display: inline-block; max-width: 22em; font-weight: normal; color: #444; }
 )";
 
 }  // namespace
@@ -171,7 +172,10 @@ std::string fleetHtml(const Json& fleet) {
       h << htmlEscape(r.value("name", ""));
     h << "<br><small>" << htmlEscape(r.value("log", "")) << "<br>"
       << htmlEscape(r.value("this_batch", "")) << "</small></td>"
-      << "<td class=\"status-" << htmlEscape(status) << "\">" << htmlEscape(status) << "</td>"
+      << "<td class=\"status-" << htmlEscape(status) << "\">" << htmlEscape(status);
+    if (!r.value("error", "").empty())
+      h << "<br><small class=\"error\">" << htmlEscape(r.value("error", "")) << "</small>";
+    h << "</td>"
       << "<td class=\"r\">" << duration(r["log_duration_s"]) << "</td>"
       << "<td class=\"r\">" << fixed(r["path_length_m"], 1) << "</td>"
       << "<td class=\"r\">" << fixed(r["end_point_drift_m"], 3) << "</td>"
