@@ -8,6 +8,7 @@
 
 #include "commands.h"
 #include "common/error.h"
+#include "fleet_task.h"
 #include "progress_bar.h"
 
 namespace {
@@ -40,7 +41,7 @@ int main(int argc, char** argv) {
       "cloud split into storeys out.",
       "storey"};
   app.require_subcommand(1);
-  app.set_version_flag("--version", "storey 0.1.0");
+  app.set_version_flag("--version", std::string("storey ") + STOREY_VERSION);
 
   RunOptions run;
   auto* run_cmd = app.add_subcommand(
@@ -193,6 +194,67 @@ int main(int argc, char** argv) {
                         "simulate only the first S seconds of each walk (quick checks)");
   bench_cmd->add_flag("--keep", bench.keep, "keep every seed's bag, mesh and map");
 
+  BatchOptions batch;
+  auto* batch_cmd = app.add_subcommand(
+      "batch",
+      "map many logs (storey run each, one output folder per log), resumable, on this machine or "
+      "on a Slurm cluster; fleet.json and fleet.html at the end (docs/batch.md)");
+  batch_cmd->add_option("INPUTS", batch.inputs,
+                        "logs (files or PCD folders), folders to search for logs (*.bag, *.pcap, "
+                        "*.pcapng, PCD folders), manifests (YAML with logs:, docs/batch.md)");
+  batch_cmd->add_option("-o,--out", batch.out_dir,
+                        "FLEET_OUT: logs/<name>/ per log, state/, fleet.json, fleet.html");
+  batch_cmd->add_option("--executor", batch.executor, "local (processes here) or slurm")
+      ->check(CLI::IsMember({"local", "slurm"}))
+      ->capture_default_str();
+  batch_cmd
+      ->add_option("--jobs", batch.jobs,
+                   "local: logs at a time (0: cores / threads one run uses); slurm: array "
+                   "tasks running at once (%M; 0: no limit)")
+      ->capture_default_str();
+  batch_cmd->add_option("-c,--config", batch.config_path,
+                        "configuration of every log (YAML; a manifest's per-log config: goes "
+                        "over it)");
+  batch_cmd->add_option("--calibration", batch.calibration_path,
+                        "sensor calibration for the logs without their own (manifest)");
+  batch_cmd->add_option("--retries", batch.retries, "attempts after a failed run of a log")
+      ->capture_default_str();
+  batch_cmd->add_flag("--only-failed", batch.only_failed,
+                      "run only the logs whose last run failed");
+  batch_cmd->add_flag("--force", batch.force, "run every log again, even when finished");
+  batch_cmd->add_option("--status", batch.status_dir,
+                        "FLEET_OUT: show a batch's state, collect a finished Slurm batch, rewrite "
+                        "its report (no INPUTS)");
+  batch_cmd->add_flag("--submit-only", batch.submit_only,
+                      "slurm: submit the job array and a collect job, then return");
+  batch_cmd->add_option("--partition", batch.partition, "slurm: partition (sbatch --partition)");
+  batch_cmd->add_option("--account", batch.account, "slurm: account (sbatch --account)");
+  batch_cmd->add_option("--cpus-per-task", batch.cpus_per_task, "slurm: CPUs per task (default 1)");
+  batch_cmd->add_option("--mem", batch.mem,
+                        "slurm: memory per task, sbatch syntax (default: estimated from the "
+                        "largest log's size and duration)");
+  batch_cmd->add_option("--time", batch.time,
+                        "slurm: time limit per task, sbatch syntax (default: estimated from the "
+                        "longest log)");
+  batch_cmd->add_option("--sbatch-arg", batch.sbatch_args,
+                        "slurm: one more sbatch argument, e.g. --sbatch-arg=--qos=short "
+                        "(repeatable)");
+  batch_cmd->add_option("--task-prolog", batch.prolog,
+                        "slurm: shell line(s) each task runs before storey, e.g. 'module load "
+                        "storey'");
+  batch_cmd->add_option("--storey", batch.storey_binary,
+                        "slurm: the storey binary as the compute nodes see it (default: this "
+                        "program's path; it must be on a shared file system)");
+  batch_cmd->add_option("--poll", batch.poll_seconds, "slurm: seconds between squeue calls")
+      ->capture_default_str();
+
+  std::string task_plan;
+  int task_index = -1;
+  auto* task_cmd = app.add_subcommand("batch-task", "one array task of a Slurm batch (internal)");
+  task_cmd->group("");  // hidden from --help
+  task_cmd->add_option("PLAN", task_plan, "state/plan-N.json")->required();
+  task_cmd->add_option("INDEX", task_index, "task index (SLURM_ARRAY_TASK_ID)")->required();
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -212,6 +274,8 @@ int main(int argc, char** argv) {
     if (*render_cmd) return runRender(render);
     if (*bench_cmd) return runBench(bench);
     if (*bias_cmd) return runRegistrationBias(bias);
+    if (*batch_cmd) return runBatch(batch);
+    if (*task_cmd) return runBatchTask(task_plan, task_index);
   } catch (const storey::Cancelled& e) {
     std::cerr << "storey: " << e.what() << '\n';
     return 1;

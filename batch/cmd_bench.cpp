@@ -3,12 +3,6 @@
 // against the truth; one table (markdown + JSON) with a row per seed and the
 // distribution of each figure. Each step is a child `storey` process (its
 // peak memory measured, its log kept); a failing seed is a row with its error.
-#include <fcntl.h>
-#include <signal.h>
-#include <sys/prctl.h>
-#include <sys/resource.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <atomic>
@@ -21,6 +15,7 @@
 #include <thread>
 
 #include "bench_table.h"
+#include "child_process.h"
 #include "commands.h"
 #include "common/atomic_file.h"
 #include "common/error.h"
@@ -30,52 +25,6 @@ namespace storey::cli {
 namespace {
 
 namespace fs = std::filesystem;
-
-struct StepResult {
-  int exit_code = -1;
-  double peak_mb = 0.0;
-};
-
-/// Runs this program with `args`, stdout and stderr into `log_path`.
-StepResult runSelf(const std::vector<std::string>& args, const std::string& log_path) {
-  std::vector<std::string> argv_storage{"/proc/self/exe"};
-  argv_storage.insert(argv_storage.end(), args.begin(), args.end());
-  std::vector<char*> argv;
-  for (std::string& a : argv_storage) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  // fork + exec rather than posix_spawn: the child asks to be sent SIGTERM
-  // when the thread that started it dies, so stopping `storey bench` (Ctrl-C,
-  // kill) stops its steps too. Only async-signal-safe calls before exec.
-  const pid_t parent = getpid();
-  const char* log = log_path.c_str();
-  const pid_t pid = fork();
-  StepResult result;
-  if (pid < 0) return result;
-  if (pid == 0) {
-    if (prctl(PR_SET_PDEATHSIG, SIGTERM) != 0 || getppid() != parent) _exit(127);
-    const int fd = open(log, O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    if (fd < 0 || dup2(fd, 1) < 0 || dup2(fd, 2) < 0) _exit(127);
-    execv("/proc/self/exe", argv.data());
-    _exit(127);
-  }
-  int status = 0;
-  rusage usage{};
-  while (wait4(pid, &status, 0, &usage) < 0) {
-    if (errno != EINTR) return result;
-  }
-  result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-  result.peak_mb = static_cast<double>(usage.ru_maxrss) / 1024.0;  // ru_maxrss in KiB
-  return result;
-}
-
-/// The last non-empty line of a log (the one-line error of a failed step).
-std::string lastLine(const std::string& path) {
-  std::ifstream in(path);
-  std::string line, last;
-  while (std::getline(in, line))
-    if (line.find_first_not_of(" \t\r") != std::string::npos) last = line;
-  return last.empty() ? "no output" : last;
-}
 
 std::vector<std::uint64_t> parseSeeds(const std::string& text) {
   std::vector<std::uint64_t> seeds;
@@ -155,7 +104,7 @@ int runBench(const BenchOptions& options) {
             std::to_string(threads)}}};
       for (const auto& [name, args] : steps) {
         const std::string log = (dir / (name + ".log")).string();
-        const StepResult step = runSelf(args, log);
+        const ChildResult step = runSelf(args, log);
         if (name == "run") row.peak_memory_mb = step.peak_mb;
         if (step.exit_code != 0) {
           row.error = name + ": " + lastLine(log);

@@ -86,6 +86,29 @@ struct BenchOptions {
   bool keep = false;           ///< --keep: keep bags, meshes and maps
 };
 
+struct BatchOptions {
+  std::vector<std::string> inputs;  ///< logs, folders to search, manifests
+  std::string out_dir;              ///< -o: FLEET_OUT
+  std::string executor = "local";   ///< --executor: local or slurm
+  int jobs = 0;                     ///< --jobs: local: logs at a time (0: cores / threads per run);
+                                    ///< slurm: the array's %M (0: no limit)
+  std::string config_path;          ///< -c/--config: base config of every log
+  std::string calibration_path;     ///< --calibration: for logs without their own
+  int retries = 1;                  ///< --retries: more attempts after a failed run
+  bool only_failed = false;         ///< --only-failed: run only the logs whose last run failed
+  bool force = false;               ///< --force: run every log again
+  std::string status_dir;           ///< --status FLEET_OUT: report a batch, collect a Slurm one
+  // Slurm (the command line wins over a manifest's slurm: section).
+  bool submit_only = false;              ///< --submit-only: submit and return
+  std::string partition, account;        ///< --partition, --account
+  std::optional<int> cpus_per_task;      ///< --cpus-per-task
+  std::string mem, time;                 ///< --mem, --time (sbatch syntax); empty = estimated
+  std::vector<std::string> sbatch_args;  ///< --sbatch-arg (repeatable)
+  std::string prolog;                    ///< --task-prolog: shell lines before storey in each task
+  std::string storey_binary;             ///< --storey: the binary as the nodes see it
+  double poll_seconds = 10.0;            ///< --poll: squeue interval [s]
+};
+
 struct RenderOptions {
   std::string out_dir;               ///< output folder of storey run
   std::string config_path;           ///< -c/--config: its `render:` section is used
@@ -104,5 +127,6 @@ int runEval(const EvalOptions& options);
 int runRender(const RenderOptions& options);
 int runBench(const BenchOptions& options);
 int runRegistrationBias(const RegistrationBiasOptions& options);
+int runBatch(const BatchOptions& options);
 
 }  // namespace storey::cli

@@ -79,12 +79,14 @@ bool ProgressBar::update(double fraction, const std::string& stage) {
   const double now = clock_();
   meter_.update(fraction, stage, now);
   const int percent = percentOf(fraction);
+  const bool new_detail = detail_ != shown_detail_;
   if (mode_ == Mode::kBar) {
-    if (stage != last_stage_ || percent != last_percent_) draw();
-  } else if (stage != last_stage_ || percent / 10 != last_decile_ ||
+    if (stage != last_stage_ || percent != last_percent_ || new_detail) draw();
+  } else if (stage != last_stage_ || percent / 10 != last_decile_ || new_detail ||
              now - last_line_ >= kHeartbeatSeconds) {
     line(now);
   }
+  shown_detail_ = detail_;
   last_stage_ = stage;
   last_percent_ = percent;
   return true;
@@ -94,6 +96,12 @@ void ProgressBar::setLogTime(double log_seconds) {
   if (mode_ == Mode::kOff) return;
   std::lock_guard<std::mutex> lock(mutex_);
   meter_.setLogTime(log_seconds, clock_());
+}
+
+void ProgressBar::setDetail(const std::string& detail) {
+  if (mode_ == Mode::kOff) return;
+  std::lock_guard<std::mutex> lock(mutex_);
+  detail_ = detail;  // shown by the next update()
 }
 
 void ProgressBar::print(const std::string& text) {
@@ -129,7 +137,7 @@ void ProgressBar::draw() {
   std::string text = "[" + std::string(filled, '#') + std::string(kBarWidth - filled, ' ') + "] ";
   const std::string percent = std::to_string(percentOf(r.fraction));
   text += std::string(3 - std::min<std::size_t>(3, percent.size()), ' ') + percent + "% " +
-          r.stage + "  " + timingText(r);
+          r.stage + (detail_.empty() ? "" : " " + detail_) + "  " + timingText(r);
   // Longer than the terminal's width it would wrap and '\r' would not redraw it.
   const std::size_t width = terminalWidth();
   if (text.size() >= width) text.resize(width - 1);
@@ -139,8 +147,8 @@ void ProgressBar::draw() {
 
 void ProgressBar::line(double now) {
   const ProgressReading r = meter_.reading(now);
-  out_ << "storey " << label_ << ": " << r.stage << ' ' << percentOf(r.fraction) << "% ("
-       << timingText(r) << ")\n"
+  out_ << "storey " << label_ << ": " << r.stage << (detail_.empty() ? "" : " " + detail_) << ' '
+       << percentOf(r.fraction) << "% (" << timingText(r) << ")\n"
        << std::flush;
   last_decile_ = percentOf(r.fraction) / 10;
   last_line_ = now;

@@ -32,6 +32,10 @@ class ProgressBar {
 
   bool update(double fraction, const std::string& stage);
   void setLogTime(double log_seconds);
+  /// Text shown after the stage's name from the next update() on (e.g. the
+  /// counts of a batch's logs); it does not reset the stage's time-left
+  /// estimate. Plain lines: a line at each update() that changes it.
+  void setDetail(const std::string& detail);
   /// A ProgressFn / LogTimeFn that draws on this bar (the bar must outlive them).
   ProgressFn callback() {
     return [this](double f, const std::string& s) { return update(f, s); };
@@ -60,6 +64,8 @@ class ProgressBar {
   bool finished_ = false;
   int last_decile_ = -1;
   std::string last_stage_;
+  std::string detail_;
+  std::string shown_detail_;  ///< the detail of the last update()
   int last_percent_ = -1;
   double last_line_ = 0.0;
   std::condition_variable wake_;

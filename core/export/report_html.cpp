@@ -5,9 +5,8 @@
 #include "common/atomic_file.h"
 
 namespace storey {
-namespace {
 
-std::string escape(const std::string& s) {
+std::string htmlEscape(const std::string& s) {
   std::string out;
   for (char c : s) {
     switch (c) {
@@ -30,6 +29,8 @@ std::string escape(const std::string& s) {
   return out;
 }
 
+namespace {
+
 /// Inline markup: `code`, **bold**, ![alt](src); the rest escaped.
 std::string inlineHtml(const std::string& s) {
   std::string out;
@@ -38,7 +39,7 @@ std::string inlineHtml(const std::string& s) {
     if (s[i] == '`') {
       const std::size_t end = s.find('`', i + 1);
       if (end != std::string::npos) {
-        out += "<code>" + escape(s.substr(i + 1, end - i - 1)) + "</code>";
+        out += "<code>" + htmlEscape(s.substr(i + 1, end - i - 1)) + "</code>";
         i = end + 1;
         continue;
       }
@@ -57,13 +58,13 @@ std::string inlineHtml(const std::string& s) {
       if (end != std::string::npos) {
         const std::string alt = s.substr(i + 2, close - i - 2);
         const std::string src = s.substr(close + 2, end - close - 2);
-        out += "<a href=\"" + escape(src) + "\"><img src=\"" + escape(src) + "\" alt=\"" +
-               escape(alt) + "\"></a>";
+        out += "<a href=\"" + htmlEscape(src) + "\"><img src=\"" + htmlEscape(src) + "\" alt=\"" +
+               htmlEscape(alt) + "\"></a>";
         i = end + 1;
         continue;
       }
     }
-    out += escape(std::string(1, s[i]));
+    out += htmlEscape(std::string(1, s[i]));
     ++i;
   }
   return out;
@@ -98,6 +99,10 @@ img { max-width: 100%; border: 1px solid #ddd; }
 )";
 
 }  // namespace
+
+const char* reportHtmlStyle() {
+  return kStyle;
+}
 
 std::string markdownToHtml(const std::string& markdown) {
   std::ostringstream html;

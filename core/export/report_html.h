@@ -18,5 +18,9 @@ void writeReportHtml(const std::string& report_json, const std::string& path,
 /// **bold**, trailing-two-space line breaks, pipe tables with an alignment
 /// row, "- " lists, ![alt](src) images) as HTML body content. Text is escaped.
 std::string markdownToHtml(const std::string& markdown);
+/// `s` with & < > " escaped for HTML text and attribute values.
+std::string htmlEscape(const std::string& s);
+/// The report pages' inline CSS (also used by the fleet report of `storey batch`).
+const char* reportHtmlStyle();
 
 }  // namespace storey

@@ -230,8 +230,16 @@ RosbagStructure BagWalker::walk() {
       fail(pos, "unsupported chunk info version");
     }
     const auto chunk_pos = field<std::uint64_t>(r, "chunk_pos", "chunk info record");
-    field<std::uint64_t>(r, "start_time", "chunk info record");
-    field<std::uint64_t>(r, "end_time", "chunk info record");
+    // ROS time: seconds in the low 32 bits, nanoseconds in the high 32.
+    auto nanoseconds = [](std::uint64_t t) {
+      return static_cast<std::int64_t>(t & 0xffffffffu) * 1000000000 +
+             static_cast<std::int64_t>(t >> 32);
+    };
+    const std::int64_t start =
+        nanoseconds(field<std::uint64_t>(r, "start_time", "chunk info record"));
+    const std::int64_t end = nanoseconds(field<std::uint64_t>(r, "end_time", "chunk info record"));
+    if (i == 0 || start < out.start_ns) out.start_ns = start;
+    if (i == 0 || end > out.end_ns) out.end_ns = end;
     const auto count = field<std::uint32_t>(r, "count", "chunk info record");
     if (static_cast<std::uint64_t>(count) * 8 != r.data_len) {
       fail(pos, "chunk info record has " + std::to_string(r.data_len) + " bytes of data for " +

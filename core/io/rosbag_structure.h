@@ -27,6 +27,8 @@ struct RosbagStructure {
   std::uint64_t message_count = 0;                             ///< index entries of all chunks
   std::map<std::string, std::uint32_t> chunks_by_compression;  ///< "none" / "lz4" / "bz2" -> chunks
   std::vector<std::uint64_t> chunk_positions;  ///< byte offset of each chunk record, index order
+  std::int64_t start_ns = 0;                   ///< earliest message time of the chunk index [ns]
+  std::int64_t end_ns = 0;                     ///< latest message time of the chunk index [ns]
 };
 
 /// Returns the structure of a sound bag. Throws storey::Error naming `path`,
