@@ -8,6 +8,7 @@
 
 #include "commands.h"
 #include "common/error.h"
+#include "common/version.h"
 #include "fleet_task.h"
 #include "progress_bar.h"
 
@@ -41,7 +42,7 @@ int main(int argc, char** argv) {
       "cloud split into storeys out.",
       "storey"};
   app.require_subcommand(1);
-  app.set_version_flag("--version", std::string("storey ") + STOREY_VERSION);
+  app.set_version_flag("--version", std::string("storey ") + storey::storeyVersion());
 
   RunOptions run;
   auto* run_cmd = app.add_subcommand(

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "common/atomic_file.h"
+#include "common/version.h"
 #include "export/report_html.h"
 
 namespace storey::cli {
@@ -143,7 +144,8 @@ std::string fleetHtml(const Json& fleet) {
     << "<title>Storey fleet report</title>\n<style>" << reportHtmlStyle() << kFleetStyle
     << "</style>\n</head>\n<body>\n<h1>Storey fleet report</h1>\n<p>"
     << htmlEscape(fleet.value("fleet_out", "")) << "<br>" << t.value("logs", 0)
-    << " logs: " << t.value("done", 0) << " done, " << t.value("failed", 0) << " failed";
+    << (t.value("logs", 0) == 1 ? " log: " : " logs: ") << t.value("done", 0) << " done, "
+    << t.value("failed", 0) << " failed";
   for (const char* other : {"running", "queued", "cancelled", "not_run"})
     if (t.value(other, 0) > 0) h << ", " << t.value(other, 0) << " " << other;
   h << ". Executor " << htmlEscape(fleet.value("executor", ""));
@@ -219,8 +221,8 @@ Json writeFleetReport(const FleetPlan& plan) {
 std::string fleetSummaryText(const Json& fleet) {
   const Json& t = fleet["totals"];
   std::ostringstream s;
-  s << t.value("logs", 0) << " logs: " << t.value("done", 0) << " done, " << t.value("failed", 0)
-    << " failed";
+  s << t.value("logs", 0) << (t.value("logs", 0) == 1 ? " log: " : " logs: ") << t.value("done", 0)
+    << " done, " << t.value("failed", 0) << " failed";
   for (const char* other : {"running", "queued", "cancelled", "not_run"})
     if (t.value(other, 0) > 0) s << ", " << t.value(other, 0) << " " << other;
   std::size_t skipped = 0;

@@ -9,10 +9,7 @@
 
 #include "common/atomic_file.h"
 #include "common/error.h"
-
-#ifndef STOREY_VERSION
-#error "STOREY_VERSION must be defined (batch/CMakeLists.txt: the project's version)"
-#endif
+#include "common/version.h"
 
 namespace storey::cli {
 namespace {
@@ -49,10 +46,6 @@ Json fileIdentity(const fs::path& file, const std::string& name) {
 }
 
 }  // namespace
-
-const char* storeyVersion() {
-  return STOREY_VERSION;
-}
 
 std::string FleetPaths::logOut(const std::string& name) const {
   return (fs::path(root) / "logs" / name).string();

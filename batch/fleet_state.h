@@ -20,9 +20,6 @@
 
 namespace storey::cli {
 
-/// Storey's version, recorded with every run (a new version re-runs every log).
-const char* storeyVersion();
-
 /// Where a fleet's files are.
 struct FleetPaths {
   std::string root;                                       ///< FLEET_OUT (absolute)

@@ -9,6 +9,7 @@
 
 #include "common/atomic_file.h"
 #include "common/error.h"
+#include "common/version.h"
 #include "export/binary_out.h"
 #include "export/point_cloud_writers.h"
 #include "export/point_selection.h"
@@ -99,7 +100,7 @@ void writeLas(const std::string& path, const MapCloud& cloud,
   put<std::uint8_t>(header, 1);
   put<std::uint8_t>(header, 4);
   putChars(header, "Storey LiDAR-inertial SLAM", 32);
-  putChars(header, "Storey 0.1.0", 32);
+  putChars(header, std::string("Storey ") + storeyVersion(), 32);
   put<std::uint16_t>(header, static_cast<std::uint16_t>(utc.tm_yday + 1));
   put<std::uint16_t>(header, static_cast<std::uint16_t>(utc.tm_year + 1900));
   put<std::uint16_t>(header, las::kHeaderSize);

@@ -4,6 +4,7 @@
 #include <optional>
 
 #include "common/statistics.h"
+#include "common/version.h"
 #include "export/storeys_json.h"
 #include "trajectory/drift.h"
 
@@ -234,7 +235,7 @@ nlohmann::json RunReportBuilder::json() const {
   for (std::size_t i = 0; i < d.match_rejects.size(); ++i)
     match_rejects[toString(static_cast<MatchReject>(i))] = d.match_rejects[i];
   nlohmann::json report;
-  report["storey_version"] = "0.1.0";
+  report["storey_version"] = storeyVersion();
   report["input"] = d.input;
   report["imu_initialisation"] = d.initialisation;
   report["odometry"] = {
