@@ -350,14 +350,16 @@ const char* toString(StairKind kind) {
       return "switchback";
     case StairKind::kStraight:
       return "straight";
+    case StairKind::kLShaped:
+      return "l_shaped";
   }
   return "switchback";
 }
 
 StairKind stairKindFromString(const std::string& name) {
-  for (StairKind kind : {StairKind::kSwitchback, StairKind::kStraight})
+  for (StairKind kind : {StairKind::kSwitchback, StairKind::kStraight, StairKind::kLShaped})
     if (name == toString(kind)) return kind;
-  throw Error("unknown stair kind '" + name + "' (switchback or straight)");
+  throw Error("unknown stair kind '" + name + "' (switchback, straight or l_shaped)");
 }
 
 void BuildingSpec::validate() const {

@@ -19,9 +19,10 @@ namespace storey::sim {
 enum class StairKind {
   kSwitchback,  ///< an enclosed stairwell: two flights and a half landing per storey
   kStraight,    ///< open straight flights along the corridor, one per storey, side by side
+  kLShaped,     ///< two flights at a right angle round an open well, a quarter landing between
 };
 const char* toString(StairKind kind);
-/// "switchback" or "straight"; storey::Error listing them otherwise.
+/// "switchback", "straight" or "l_shaped"; storey::Error listing them otherwise.
 StairKind stairKindFromString(const std::string& name);
 
 /// The stairs linking all storeys, north of the corridor.

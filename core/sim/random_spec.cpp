@@ -170,7 +170,7 @@ BuildingSpec draw(std::uint64_t seed, std::uint64_t attempt) {
   // unchanged): a single-loaded corridor in a fifth of the buildings without
   // an atrium; arms making an L, T or U in two fifths; rooms entered on every
   // storey in half; a wide (monumental) stairwell in a sixth; open straight
-  // stairs in a third.
+  // stairs in a third, L-shaped ones in a third of the others.
   if (b.atrium.rooms == 0 && rng.uniform() < 0.2) b.single_loaded = true;
   if (rng.uniform() < 0.4) {
     const double shape = rng.uniform();
@@ -202,6 +202,13 @@ BuildingSpec draw(std::uint64_t seed, std::uint64_t attempt) {
     for (std::size_t k = 0; k + 1 < b.storey_heights.size(); ++k)
       run = std::max(run, (std::max(4.0, std::round(b.storey_heights[k] / s.riser)) - 1) * s.tread);
     const double half = run / 2 + s.floor_landing_depth;
+    b.corridor_length = mm(std::max(b.corridor_length, 2 * half + 9.0));
+    s.position = mm(std::max(s.position, (half + 6.0) / b.corridor_length));
+  } else if (rng.uniform() < 0.35) {
+    // L-shaped stairs round an open well in a third of the others: room for
+    // the walkway west of them.
+    s.kind = StairKind::kLShaped;
+    const double half = s.width + 2.0;  // at least half the stairs' width
     b.corridor_length = mm(std::max(b.corridor_length, 2 * half + 9.0));
     s.position = mm(std::max(s.position, (half + 6.0) / b.corridor_length));
   }

@@ -19,7 +19,7 @@ constexpr double kStepUnderside = 0.12;      ///< concrete below each step [m]
 Stairs::Stairs(const StairwellSpec& spec, const std::vector<double>& floor_z, double length,
                double yc, double wall_thickness, const std::string& source)
     : spec_(spec), z_(floor_z), yc_(yc), wt_(wall_thickness) {
-  double run_max = 0.0;
+  double run_max = 0.0, run_second_max = 0.0;
   for (std::size_t k = 0; k + 2 < z_.size(); ++k) {
     Flight f;
     const double h = z_[k + 1] - z_[k];
@@ -31,17 +31,21 @@ Stairs::Stairs(const StairwellSpec& spec, const std::vector<double>& floor_z, do
     f.run_second = (f.risers - f.risers_first - 1) * spec_.tread;
     f.landing_z = f.risers_first * f.riser;
     run_max = std::max(run_max, straight() ? f.run : f.run_first);
+    run_second_max = std::max(run_second_max, f.run_second);
     flights_.push_back(f);
   }
-  // Half the stairs' extent along the corridor.
-  const double half = straight() ? run_max / 2 + spec_.floor_landing_depth : spec_.width / 2;
+  // Half the stairs' extent along the corridor: the flights and landings
+  // (straight); the walkway, flight 2 and the quarter landing (L-shaped).
+  const double lane = (spec_.width - kPartitionThickness) / 2;
+  double half = spec_.width / 2;
+  if (straight()) half = run_max / 2 + spec_.floor_landing_depth;
+  if (lShaped()) half = (2 * lane + run_second_max + wt_) / 2;
   if (length < 2 * half + 3.7)
     throw Error(source + ": key 'building.corridor_length' is too short for the stairwell");
   xs_ = std::clamp(spec_.position * length, half + 2.5, length - half - 1.2);
   x0_ = xs_ - half;
   x1_ = xs_ + half;
   if (straight()) {
-    const double lane = (spec_.width - kPartitionThickness) / 2;
     ya0_ = yc_ + wt_ / 2;
     ya1_ = ya0_ + lane;
     yb0_ = ya1_ + kPartitionThickness;
@@ -51,6 +55,15 @@ Stairs::Stairs(const StairwellSpec& spec, const std::vector<double>& floor_z, do
     x_east_foot_ = xs_ + run_max / 2;
     x_west_land_ = (x0_ + wt_ / 2 + x_west_foot_) / 2;
     x_east_land_ = (x_east_foot_ + x1_ - wt_ / 2) / 2;
+  } else if (lShaped()) {
+    y_flights_ = yc_ + spec_.floor_landing_depth;
+    y_row0_ = y_flights_ + run_max;
+    y_row1_ = y_row0_ + lane;
+    y_back_ = y_row1_ + wt_ / 2;
+    walk_x0_ = x0_ + wt_ / 2;
+    walk_x1_ = walk_x0_ + lane;
+    col_x1_ = x1_ - wt_ / 2;
+    col_x0_ = col_x1_ - lane;
   } else {
     y_flights_ = yc_ + spec_.floor_landing_depth;
     y_back_ = y_flights_ + run_max + spec_.half_landing_depth;
@@ -60,16 +73,19 @@ Stairs::Stairs(const StairwellSpec& spec, const std::vector<double>& floor_z, do
 }
 
 double Stairs::entryX(int k) const {
+  if (lShaped()) return (col_x0_ + col_x1_) / 2;
   if (!straight()) return x_east_lane_;
   return k % 2 == 0 ? x_west_land_ : x_east_land_;
 }
 
 double Stairs::exitX(int k) const {
+  if (lShaped()) return (walk_x0_ + walk_x1_) / 2;
   if (!straight()) return x_west_lane_;
   return k % 2 == 0 ? x_east_land_ : x_west_land_;
 }
 
 double Stairs::westmostX() const {
+  if (lShaped()) return exitX(0);
   return straight() ? x_west_land_ : x_west_lane_;
 }
 
@@ -83,6 +99,12 @@ std::vector<Opening> Stairs::corridorOpenings(double zf, double ceiling) const {
 
 std::vector<Rect> Stairs::slabHoles(int j) const {
   if (j <= 0 || j >= static_cast<int>(z_.size()) - 1) return {};
+  if (lShaped()) {
+    // Over flight 1's column and the well, and over flight 2 up to its head
+    // (the floor reaches it there, and the walkway is floor).
+    const double head = col_x0_ - flights_[j - 1].run_second;
+    return {{walk_x1_, y_flights_, col_x1_, y_row0_}, {head, y_row0_, col_x1_, y_row1_}};
+  }
   if (!straight()) return {{x0_ + wt_ / 2, y_flights_, x1_ - wt_ / 2, y_back_ - wt_ / 2}};
   // Over the flight that comes up through this floor.
   const Flight& f = flights_[j - 1];
@@ -93,6 +115,8 @@ std::vector<Rect> Stairs::slabHoles(int j) const {
 void Stairs::addFlights(int k, TriangleMesh& mesh) const {
   if (straight())
     addStraight(k, mesh);
+  else if (lShaped())
+    addLShaped(k, mesh);
   else
     addSwitchback(k, mesh);
 }
@@ -150,9 +174,40 @@ void Stairs::addStraight(int k, TriangleMesh& mesh) const {
               Surface::kWall);
 }
 
+void Stairs::addLShaped(int k, TriangleMesh& mesh) const {
+  const Flight& f = flights_[k];
+  const double zf = z_[k], tread = spec_.tread, r = f.riser;
+  // Flight 1: up the east column towards +y.
+  for (int i = 1; i < f.risers_first; ++i) {
+    const double top = zf + i * r;
+    mesh.addBox(Vector3d(col_x0_, y_flights_ + (i - 1) * tread, top - r - kStepUnderside),
+                Vector3d(col_x1_, y_flights_ + i * tread, top), Surface::kStairs);
+  }
+  // The quarter landing in the north-east corner.
+  const double zl = zf + f.landing_z;
+  mesh.addBox(Vector3d(col_x0_, y_flights_ + f.run_first, zl - kLandingThickness),
+              Vector3d(col_x1_, y_row1_, zl), Surface::kStairs);
+  // Flight 2: west along the back wall, to the next floor.
+  for (int j = 1; j < f.risers - f.risers_first; ++j) {
+    const double top = zl + j * r;
+    mesh.addBox(Vector3d(col_x0_ - j * tread, y_row0_, top - r - kStepUnderside),
+                Vector3d(col_x0_ - (j - 1) * tread, y_row1_, top), Surface::kStairs);
+  }
+}
+
 std::vector<RouteVertex> Stairs::climb(int k, double body_height, double walk, double climb) const {
   const Flight& f = flights_[k];
   const double zf = z_[k] + body_height, zn = z_[k + 1] + body_height;
+  if (lShaped()) {
+    const double zl = zf + f.landing_z, y_row = (y_row0_ + y_row1_) / 2;
+    const double x_col = entryX(k), x_walk = exitX(k);
+    return {{Vector3d(x_col, y_flights_, zf), climb},
+            {Vector3d(x_col, y_flights_ + f.run_first, zl), walk},
+            {Vector3d(x_col, y_row, zl), walk},
+            {Vector3d(col_x0_, y_row, zl), climb},
+            {Vector3d(col_x0_ - f.run_second, y_row, zn), walk},
+            {Vector3d(x_walk, y_row, zn), walk}};
+  }
   if (straight()) {
     const bool even = k % 2 == 0;
     const double y = even ? (ya0_ + ya1_) / 2 : (yb0_ + yb1_) / 2;
@@ -177,6 +232,23 @@ std::vector<RouteVertex> Stairs::descend(int k, double body_height, double walk,
                                          bool more) const {
   const Flight& f = flights_[k];
   const double zf = z_[k] + body_height, zn = z_[k + 1] + body_height;
+  if (lShaped()) {
+    const double zl = zf + f.landing_z, y_row = (y_row0_ + y_row1_) / 2;
+    const double x_col = entryX(k), x_walk = exitX(k);
+    std::vector<RouteVertex> route{{Vector3d(x_walk, y_row, zn), walk},
+                                   {Vector3d(col_x0_ - f.run_second, y_row, zn), climb},
+                                   {Vector3d(col_x0_, y_row, zl), walk},
+                                   {Vector3d(x_col, y_row, zl), walk},
+                                   {Vector3d(x_col, y_flights_ + f.run_first, zl), climb},
+                                   {Vector3d(x_col, y_flights_, zf), walk}};
+    if (more) {
+      // Across the floor landing to the walkway, and up it to the next flight down.
+      const double y_turn = yc_ + spec_.floor_landing_depth / 2;
+      route.push_back({Vector3d(x_col, y_turn, zf), walk});
+      route.push_back({Vector3d(x_walk, y_turn, zf), walk});
+    }
+    return route;
+  }
   if (straight()) {
     // The next flight down starts at the same end, in the other lane.
     const bool even = k % 2 == 0;

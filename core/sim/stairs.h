@@ -9,7 +9,11 @@
 /// - straight: one flight per storey along the corridor, behind a glazed
 ///   corridor wall, in two lanes side by side (lane A next to the corridor
 ///   climbs east on even storeys, lane B behind it climbs west on odd ones),
-///   with floor landings at both ends open to the corridor.
+///   with floor landings at both ends open to the corridor;
+/// - l_shaped: round an open well, per storey flight 1 (east column) up
+///   towards +y to a quarter landing in the north-east corner, flight 2 west
+///   along the back wall to the next floor, and a walkway down the west
+///   column back to the corridor.
 #include <string>
 #include <vector>
 
@@ -71,6 +75,8 @@ class Stairs {
     double landing_z = 0.0;   ///< switchback: half landing above the storey floor [m]
   };
   bool straight() const { return spec_.kind == StairKind::kStraight; }
+  bool lShaped() const { return spec_.kind == StairKind::kLShaped; }
+  void addLShaped(int k, TriangleMesh& mesh) const;
   void addSwitchback(int k, TriangleMesh& mesh) const;
   void addStraight(int k, TriangleMesh& mesh) const;
 
@@ -87,6 +93,10 @@ class Stairs {
   double x_west_foot_ = 0.0, x_east_foot_ = 0.0;  ///< the flights' ends (landings' inner edges)
   double x_west_land_ = 0.0, x_east_land_ = 0.0;  ///< the walk across the landings
   double ya0_ = 0.0, ya1_ = 0.0, yb0_ = 0.0, yb1_ = 0.0;  ///< lanes A and B
+  // L-shaped (and y_flights_).
+  double walk_x0_ = 0.0, walk_x1_ = 0.0;  ///< the walkway column
+  double col_x0_ = 0.0, col_x1_ = 0.0;    ///< flight 1's column; flight 2 starts at col_x0_
+  double y_row0_ = 0.0, y_row1_ = 0.0;    ///< flight 2's row along the back wall
 };
 
 }  // namespace storey::sim

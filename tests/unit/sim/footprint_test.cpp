@@ -191,3 +191,47 @@ TEST(Stairs, StraightFlightsAlternateAlongTheCorridorOneAStorey) {
 
 }  // namespace
 }  // namespace storey::sim
+
+namespace storey::sim {
+namespace {
+
+TEST(Stairs, LShapedFlightsTurnAtAQuarterLandingAndTheWalkwayLeadsBack) {
+  BuildingSpec spec = twoStoreys();
+  spec.building.storey_heights = {3.2, 3.0, 3.4};
+  spec.building.stairwell.kind = StairKind::kLShaped;
+  const Building building = generateBuilding(spec);
+  // Per flight climbed: one rise along +y (flight 1), one along -x (flight 2).
+  int north = 0, west = 0, other = 0;
+  for (std::size_t i = 1; i < building.route.size(); ++i) {
+    const Eigen::Vector3d d = building.route[i].p - building.route[i - 1].p;
+    if (d.z() < 0.5) continue;
+    if (d.y() > 0.5 && std::abs(d.x()) < 1e-9)
+      ++north;
+    else if (d.x() < -0.5 && std::abs(d.y()) < 1e-9)
+      ++west;
+    else
+      ++other;
+  }
+  EXPECT_EQ(north, 2);
+  EXPECT_EQ(west, 2);
+  EXPECT_EQ(other, 0);
+  // The well is open: from the first floor's walkway level, looking down
+  // through the well beside flight 1 reaches the ground floor.
+  double x_col = 0.0;
+  for (std::size_t i = 1; i < building.route.size(); ++i) {
+    const Eigen::Vector3d d = building.route[i].p - building.route[i - 1].p;
+    if (d.z() > 0.5 && d.y() > 0.5) {
+      x_col = building.route[i].p.x();
+      break;
+    }
+  }
+  const RayCaster caster(building.mesh);
+  const double lane = (spec.building.stairwell.width - 0.1) / 2;
+  const double y_well = 1.1 + spec.building.stairwell.floor_landing_depth + 0.3;
+  EXPECT_NEAR(
+      castOne(caster, Eigen::Vector3d(x_col - lane, y_well, 3.2 + 1.0), -Eigen::Vector3d::UnitZ()),
+      3.2 + 1.0, 1e-3);
+}
+
+}  // namespace
+}  // namespace storey::sim
