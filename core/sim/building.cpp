@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <optional>
+#include <utility>
 
 #include "common/error.h"
 #include "sim/random.h"
@@ -17,6 +18,7 @@ using Eigen::Vector3d;
 
 constexpr double kEndClearance = 1.0;     ///< U-turn apex to the corridor end wall [m]
 constexpr double kGlassThickness = 0.02;  ///< [m]
+constexpr double kRampRun = 12.0;         ///< horizontal metres per metre of rise (1:12) [1]
 
 /// What a Generator builds: the whole building, or one of its arms (a
 /// corridor with rooms, no stairs, open at its west end, no route) in the
@@ -28,15 +30,18 @@ struct ArmLayout {
   double x = 0.0;       ///< its axis [m]
   double half = 0.0;    ///< half its width, rooms included (to the outer walls' centrelines) [m]
   double length = 0.0;  ///< from the main corridor's south wall line [m]
+  double rise = 0.0;    ///< its floors above the main building's, up a ramp [m]
 };
 
 class Generator {
  public:
+  /// `rise`: an arm's floors above the main building's (a ramp at its start).
   explicit Generator(const BuildingSpec& spec, Part part = Part::kBuilding,
-                     std::uint64_t stream = 0x5eed0001ULL)
+                     std::uint64_t stream = 0x5eed0001ULL, double rise = 0.0)
       : spec_(spec),
         b_(spec.building),
         part_(part),
+        rise_(rise),
         rng_(spec.seed, stream),
         route_rng_(spec.seed, 0x726f7574ULL) {}  // "rout"
 
@@ -71,7 +76,8 @@ class Generator {
   bool hasStairs() const { return part_ == Part::kBuilding && storeyCount() > 1; }
 
   void layout() {
-    z_.assign(1, 0.0);
+    z_.assign(1, rise_);
+    ramp_length_ = rise_ * kRampRun;
     for (double h : b_.storey_heights) z_.push_back(z_.back() + h);
     L_ = b_.corridor_length;
     yc_ = b_.corridor_width / 2;
@@ -238,12 +244,13 @@ class Generator {
       ArmLayout arm;
       arm.half = yc_ + b_.room_depth;
       arm.length = a.lengths[i];
+      arm.rise = a.rises.empty() ? 0.0 : a.rises[i];
       if (L_ < 2 * arm.half)
         throw Error(spec_.source + ": key 'building.arms.positions': an arm (" +
                     std::to_string(2 * arm.half) + " m wide with its rooms) is wider than " +
                     "the corridor is long");
       arm.x = std::clamp(a.positions[i] * L_, arm.half, L_ - arm.half);
-      if (arm.length < b_.room_depth + 2 * kEndClearance + 2.0)
+      if (arm.length < std::max(b_.room_depth, arm.rise * kRampRun) + 2 * kEndClearance + 2.0)
         throw Error(spec_.source + ": key 'building.arms.lengths' is too short to walk into");
       arms_.push_back(arm);
     }
@@ -274,7 +281,8 @@ class Generator {
       a.partition_angle = M_PI / 2;
       a.atrium = AtriumSpec{};
       a.arms = ArmsSpec{};
-      const Building arm = Generator(arm_spec, Part::kArm, 0x61726d00ULL + i).run();  // "arm"
+      const Building arm =
+          Generator(arm_spec, Part::kArm, 0x61726d00ULL + i, arms_[i].rise).run();  // "arm"
       Eigen::Matrix3d R_main_arm;
       R_main_arm << 0, 1, 0, -1, 0, 0, 0, 0, 1;  // arm x -> main -y, arm y -> main x
       out_.mesh.append(arm.mesh, R_main_arm, Vector3d(arms_[i].x, -yc_, 0.0));
@@ -328,6 +336,15 @@ class Generator {
     if (hasAtrium() && k > 0 && k < storeyCount())
       holes.push_back(
           {atrium_x0_ + wt_ / 2, y_south_ + wt_ / 2, atrium_x1_ - wt_ / 2, -yc_ - wt_ / 2});
+    // Where the arms cross the south rooms' band, their own floors (at their level).
+    for (const ArmLayout& arm : arms_)
+      if (y_south_ < -yc_ - wt_ / 2)
+        holes.push_back({arm.x - arm.half, y_south_ - wt_ / 2, arm.x + arm.half, -yc_ - wt_ / 2});
+    // A split-level arm's corridor starts with its ramp, not its floor.
+    if (ramp_length_ > 0.0 && k < storeyCount()) {
+      holes.push_back({-wt_ / 2, -yc_, ramp_length_, yc_});
+      addRamp(k);
+    }
     std::vector<Rect> parts{outer};
     for (const Rect& hole : holes) {
       std::vector<Rect> cut;
@@ -344,9 +361,26 @@ class Generator {
     }
   }
 
+  /// The ramp up a split-level arm's corridor on storey k: from the main
+  /// building's floor at x = 0 to the arm's at the ramp's end, a sloping
+  /// slab as thick as the others.
+  void addRamp(int k) {
+    const double top = z_[k], bottom = top - rise_, t = b_.slab_thickness;
+    const float floor = surfaceReflectivity(Surface::kFloor);
+    const float ceiling = surfaceReflectivity(Surface::kCeiling);
+    const double x1 = ramp_length_;
+    out_.mesh.addQuad(Vector3d(0, -yc_, bottom), Vector3d(x1, -yc_, top), Vector3d(x1, yc_, top),
+                      Vector3d(0, yc_, bottom), Surface::kFloor, floor);
+    out_.mesh.addQuad(Vector3d(0, yc_, bottom - t), Vector3d(x1, yc_, top - t),
+                      Vector3d(x1, -yc_, top - t), Vector3d(0, -yc_, bottom - t), Surface::kCeiling,
+                      ceiling);
+  }
+
   void addStoreyWalls(int k) {
     const double zf = z_[k], t = b_.slab_thickness;
-    const double z0 = zf - t, z1 = z_[k + 1] - t;  // walls pass through the slab below
+    // Walls pass through the slab below (a split-level arm's down to the
+    // main building's, so its ramp leaves no gap under them).
+    const double z0 = zf - t - rise_, z1 = z_[k + 1] - t;
     const double ceiling = z1;
     const double window_z0 = zf + b_.window_sill, window_z1 = window_z0 + b_.window_height;
 
@@ -409,8 +443,16 @@ class Generator {
         if (!onto_arm) south.push_back({w0, w1, window_z0, window_z1, true});
       }
     }
-    for (const ArmLayout& arm : arms_)  // into the arm's corridor
+    for (const ArmLayout& arm : arms_) {  // into the arm's corridor
       south.push_back({arm.x - yc_ + wt_ / 2, arm.x + yc_ - wt_ / 2, zf, z1, false});
+      // Up to a split-level arm's ceiling above its rooms (above its
+      // corridor the ramp of the storey above meets this ceiling).
+      if (arm.rise > 0.0)
+        for (const auto& [x0, x1] :
+             {std::pair(arm.x - arm.half, arm.x - yc_), std::pair(arm.x + yc_, arm.x + arm.half)})
+          out_.mesh.addBox(Vector3d(x0, -yc_ - wt_ / 2, z1),
+                           Vector3d(x1, -yc_ + wt_ / 2, z1 + arm.rise), Surface::kWall);
+    }
     if (hasAtrium()) {
       // Open to the hall on the ground floor; above it a balustrade: a solid
       // parapet (the wall below the opening) or a glass pane in the opening.
@@ -453,7 +495,8 @@ class Generator {
 
   /// Free intervals along a corridor wall: not in doors, glass, the stairwell, the ends.
   bool corridorSpotFree(bool north, double x0, double x1) const {
-    if (x0 < x_turn_west_ + 0.8 || x1 > x_turn_east_ - 0.8) return false;
+    if (x0 < std::max(x_turn_west_ + 0.8, ramp_length_ + 0.3) || x1 > x_turn_east_ - 0.8)
+      return false;
     for (const Room& r : north ? north_rooms_ : south_rooms_) {
       if (x1 > r.door0 - 0.15 && x0 < r.door1 + 0.15) return false;
       if (r.glass_front && x1 > r.x0 && x0 < r.x1) {
@@ -644,9 +687,18 @@ class Generator {
   void armTrip(const ArmLayout& arm, double dir, double y, double z) {
     const double lane = spec_.robot.lane_offset, walk = spec_.robot.walk_speed;
     const double y_end = -yc_ - (arm.length - wt_ / 2 - kEndClearance);
+    const double y_ramp = -yc_ - arm.rise * kRampRun, z_arm = z + arm.rise;
     at(arm.x - dir * lane, y, z, walk);
-    at(arm.x - dir * lane, y_end, z, walk);
-    at(arm.x + dir * lane, y_end, z, walk);
+    if (arm.rise > 0.0) {  // up the ramp
+      at(arm.x - dir * lane, -yc_, z, walk);
+      at(arm.x - dir * lane, y_ramp, z_arm, walk);
+    }
+    at(arm.x - dir * lane, y_end, z_arm, walk);
+    at(arm.x + dir * lane, y_end, z_arm, walk);
+    if (arm.rise > 0.0) {  // down it
+      at(arm.x + dir * lane, y_ramp, z_arm, walk);
+      at(arm.x + dir * lane, -yc_, z, walk);
+    }
     at(arm.x + dir * lane, y, z, walk);
   }
 
@@ -729,6 +781,8 @@ class Generator {
   const BuildingSpec& spec_;
   const BuildingLayoutSpec& b_;
   Part part_;
+  double rise_ = 0.0;         ///< kArm: its floors above the main building's [m]
+  double ramp_length_ = 0.0;  ///< kArm: the ramp at the start of its corridor [m]
   Random rng_;
   Random route_rng_;  ///< which rooms the walk enters
   Building out_;

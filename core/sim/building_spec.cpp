@@ -145,6 +145,7 @@ void visitLayout(V& v, BuildingLayoutSpec& b) {
   v.section("arms", [&](auto& a) {
     a.list("positions", b.arms.positions, true);
     a.list("lengths", b.arms.lengths, true);
+    a.list("rises", b.arms.rises, true);
   });
 }
 
@@ -421,6 +422,10 @@ void BuildingSpec::validate() const {
         "must be 0 in a single-loaded building (the atrium replaces south rooms)");
   check(b.arms.positions.size() == b.arms.lengths.size(), *this, "building.arms.lengths",
         "must list one length per arm position");
+  check(b.arms.rises.empty() || b.arms.rises.size() == b.arms.positions.size(), *this,
+        "building.arms.rises", "must be empty or list one rise per arm position");
+  for (double r : b.arms.rises)
+    check(r >= 0.0 && r <= 1.0, *this, "building.arms.rises", "values must be in [0, 1] m");
   check(b.arms.positions.size() <= 3, *this, "building.arms.positions", "must list at most 3 arms");
   for (double p : b.arms.positions)
     check(p >= 0.0 && p <= 1.0, *this, "building.arms.positions", "values must be in [0, 1]");

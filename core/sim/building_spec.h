@@ -59,6 +59,10 @@ struct ArmsSpec {
   /// (0 and 1: flush with the west and east ends) [0, 1].
   std::vector<double> positions;
   std::vector<double> lengths;  ///< from the main corridor's south wall to the arm's end [m]
+  /// How much higher each arm's floors are than the main building's, reached
+  /// by a ramp of 1:12 at the start of its corridor (split levels); empty =
+  /// all level [0, 1] [m].
+  std::vector<double> rises;
 };
 
 struct BuildingLayoutSpec {

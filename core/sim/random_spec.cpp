@@ -212,6 +212,15 @@ BuildingSpec draw(std::uint64_t seed, std::uint64_t attempt) {
     b.corridor_length = mm(std::max(b.corridor_length, 2 * half + 9.0));
     s.position = mm(std::max(s.position, (half + 6.0) / b.corridor_length));
   }
+  // Split levels: in a third of the buildings with arms, the arms' floors
+  // 0.3-0.6 m above the main building's, up a 1:12 ramp (the arm long enough
+  // for it and a turn).
+  if (!b.arms.positions.empty() && rng.uniform() < 0.35) {
+    for (std::size_t i = 0; i < b.arms.positions.size(); ++i) {
+      b.arms.rises.push_back(mm(rng.uniform(0.3, 0.6)));
+      b.arms.lengths[i] = mm(std::max(b.arms.lengths[i], b.arms.rises[i] * 12.0 + 5.0));
+    }
+  }
   return spec;
 }
 

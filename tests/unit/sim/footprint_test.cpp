@@ -235,3 +235,43 @@ TEST(Stairs, LShapedFlightsTurnAtAQuarterLandingAndTheWalkwayLeadsBack) {
 
 }  // namespace
 }  // namespace storey::sim
+
+namespace storey::sim {
+namespace {
+
+TEST(Footprint, ASplitLevelArmIsReachedUpARamp) {
+  BuildingSpec spec = twoStoreys();
+  spec.building.arms.positions = {0.5};
+  spec.building.arms.lengths = {16.0};
+  spec.building.arms.rises = {0.5};  // a 6 m ramp at 1:12
+  const Building building = generateBuilding(spec);
+  const RayCaster caster(building.mesh);
+  const double yc = 1.1, x_arm = 12.0;
+  auto floorBelow = [&](double y, double z_from) {
+    return z_from - castOne(caster, Eigen::Vector3d(x_arm, y, z_from), -Eigen::Vector3d::UnitZ());
+  };
+  // The corridor floor: the main level at the junction, half way up the ramp
+  // at 3 m, the arm's level beyond 6 m; on both storeys.
+  for (double level : {0.0, 3.2}) {
+    EXPECT_NEAR(floorBelow(-yc - 0.05, level + 1.5), level, 0.01);
+    EXPECT_NEAR(floorBelow(-yc - 3.0, level + 1.5), level + 0.25, 0.01);
+    EXPECT_NEAR(floorBelow(-yc - 10.0, level + 1.5), level + 0.5, 1e-6);
+  }
+  // The walk goes up the ramp and down again on every storey: the body is
+  // 0.5 m higher at the arm's end than in the main corridor.
+  const double body = spec.robot.body_height;
+  int at_arm_level = 0;
+  for (const RouteVertex& v : building.route)
+    if (v.p.y() < -yc - 6.0 - 1e-9) {
+      EXPECT_TRUE(std::abs(v.p.z() - (body + 0.5)) < 1e-9 ||
+                  std::abs(v.p.z() - (3.2 + body + 0.5)) < 1e-9)
+          << v.p.transpose();
+      ++at_arm_level;
+    }
+  EXPECT_EQ(at_arm_level, 2 * 2);
+  spec.building.arms.lengths = {8.0};  // too short for its ramp and a turn
+  EXPECT_THROW(generateBuilding(spec), Error);
+}
+
+}  // namespace
+}  // namespace storey::sim

@@ -27,7 +27,7 @@ TEST(RandomSpec, SeedsOneToThirtyAreValidDifferAndSpread) {
   std::set<std::string> texts;
   std::set<int> storeys, wings, rates, models, grades, motions, orientation;
   int pitched = 0, single_loaded = 0, rooms_entered = 0, wide_stairs = 0, straight_stairs = 0,
-      l_stairs = 0;
+      l_stairs = 0, split_levels = 0;
   std::set<std::string> footprints;  // corridor, L, T, U
   double min_slope = 90, max_slope = 0, min_height = 10, max_height = 0;
   for (std::uint64_t seed = 1; seed <= 30; ++seed) {
@@ -76,6 +76,7 @@ TEST(RandomSpec, SeedsOneToThirtyAreValidDifferAndSpread) {
     wide_stairs += b.stairwell.width >= 4.0;
     straight_stairs += b.stairwell.kind == StairKind::kStraight;
     l_stairs += b.stairwell.kind == StairKind::kLShaped;
+    split_levels += !b.arms.rises.empty();
     const auto& arms = b.arms.positions;
     const bool at_end = !arms.empty() && (arms[0] == 0.0 || arms[0] == 1.0);
     footprints.insert(arms.empty() ? "corridor" : arms.size() == 2 ? "U" : at_end ? "L" : "T");
@@ -101,6 +102,7 @@ TEST(RandomSpec, SeedsOneToThirtyAreValidDifferAndSpread) {
   EXPECT_GE(wide_stairs, 2);
   EXPECT_GE(straight_stairs, 4);
   EXPECT_GE(l_stairs, 3);
+  EXPECT_GE(split_levels, 1);
 }
 
 /// Closest surface within `range` of x (16 rays over the sphere), or range when none.
