@@ -26,7 +26,37 @@ int s12(const std::uint8_t* p) {
   return raw >= 0x800 ? raw - 0x1000 : raw;
 }
 
+/// nebula's block azimuths and rotations (see AzimuthInterpolation::kNebula): block b starts
+/// from the azimuth its predecessor looked ahead to (block b + 1 in dual return mode) and
+/// rotates by the difference to the block 1 (single) or 2 (dual) further on; without one, by
+/// the last difference, or by nothing in the packet's last block (nebula's VLP-32 decoder sets
+/// that block 4 earlier in dual return mode, a block that always has a successor).
+void nebulaBlockAzimuths(const std::array<std::uint16_t, kBlocksPerPacket>& sent, bool dual,
+                         bool vlp16, std::array<int, kBlocksPerPacket>& base,
+                         std::array<int, kBlocksPerPacket>& rotation) {
+  const int ahead = dual ? 2 : 1;
+  const int unrotated = kBlocksPerPacket - 1 - (dual ? (vlp16 ? 1 : 4) : 0);
+  int next = 0;
+  int last = 0;
+  for (int b = 0; b < kBlocksPerPacket; ++b) {
+    base[b] = b == 0 ? sent[0] : next;
+    if (b < kBlocksPerPacket - ahead) {
+      next = sent[b + ahead];
+      last = (36000 + next - base[b]) % 36000;
+      rotation[b] = last;
+    } else {
+      rotation[b] = b == unrotated ? 0 : last;
+    }
+  }
+}
+
 }  // namespace
+
+bool AzimuthWindow::contains(double azimuth) const {
+  const double lo = min_deg * 100.0;
+  const double hi = max_deg * 100.0;
+  return min_deg <= max_deg ? azimuth >= lo && azimuth <= hi : azimuth <= hi || azimuth >= lo;
+}
 
 const char* toString(PacketProblem problem) {
   switch (problem) {
@@ -93,29 +123,46 @@ PacketProblem PacketDecoder::decode(const std::uint8_t* data, std::size_t size,
   const int lasers = laserCount(calibration_.model);
   const int sequences = vlp16 ? 2 : 1;
   const int blocks_per_step = dual ? 2 : 1;
-  const int steps = kBlocksPerPacket / blocks_per_step;
-  // Rotation per firing step (one or two blocks), from the next step's azimuth;
-  // the last step repeats the previous one's.
-  std::array<int, kBlocksPerPacket> step_rotation{};
-  for (int s = 0; s < steps; ++s) {
-    const int here = packet.block_azimuth[s * blocks_per_step];
-    int d;
-    if (s + 1 < steps) {
-      d = (packet.block_azimuth[(s + 1) * blocks_per_step] - here + 36000) % 36000;
-    } else {
-      d = s > 0 ? step_rotation[s - 1] : 0;
+  const bool nebula = options_.azimuth == AzimuthInterpolation::kNebula;
+  // Per block: the azimuth the lasers' rotation starts from and the rotation
+  // over one firing step (one or two blocks) [0.01 deg].
+  std::array<int, kBlocksPerPacket> base{};
+  std::array<int, kBlocksPerPacket> rotation{};
+  if (nebula) {
+    nebulaBlockAzimuths(packet.block_azimuth, dual, vlp16, base, rotation);
+  } else {
+    // From the next step's azimuth; the last step repeats the previous one's.
+    const int steps = kBlocksPerPacket / blocks_per_step;
+    std::array<int, kBlocksPerPacket> step_rotation{};
+    for (int s = 0; s < steps; ++s) {
+      const int here = packet.block_azimuth[s * blocks_per_step];
+      int d;
+      if (s + 1 < steps) {
+        d = (packet.block_azimuth[(s + 1) * blocks_per_step] - here + 36000) % 36000;
+      } else {
+        d = s > 0 ? step_rotation[s - 1] : 0;
+      }
+      if (d > kMaxPlausibleStep) d = s > 0 ? step_rotation[s - 1] : 0;
+      step_rotation[s] = d;
     }
-    if (d > kMaxPlausibleStep) d = s > 0 ? step_rotation[s - 1] : 0;
-    step_rotation[s] = d;
+    for (int b = 0; b < kBlocksPerPacket; ++b) {
+      base[b] = packet.block_azimuth[b];
+      rotation[b] = step_rotation[b / blocks_per_step];
+    }
   }
   const double step_duration = sequences * sequencePeriod(calibration_.model);
   const double resolution = calibration_.distance_resolution_m;
+  const AzimuthWindow& window = options_.window;
 
   for (int b = 0; b < kBlocksPerPacket; ++b) {
     const std::uint8_t* block = data + b * kBlockSize;
     const int step = b / blocks_per_step;
     const bool second = dual && (b % 2 == 1);
-    const double rotation = step_rotation[step];  // [0.01 deg] per step
+    // nebula's VLP-16 decoder tests its own block azimuth (only when min < max).
+    const bool block_outside =
+        !window.all() &&
+        (nebula && vlp16 ? window.min_deg < window.max_deg && !window.contains(base[b])
+                         : !window.contains(packet.block_azimuth[b]));
     for (int seq = 0; seq < sequences; ++seq) {
       for (int laser = 0; laser < lasers; ++laser) {
         const int channel = seq * lasers + laser;
@@ -131,17 +178,42 @@ PacketProblem PacketDecoder::decode(const std::uint8_t* data, std::size_t size,
         }
         const Laser& cal = calibration_.lasers[laser];
         const double distance = raw * resolution + cal.distance_offset_m;
-        if (distance < options_.min_range || distance > options_.max_range) {
+        const bool in_range =
+            nebula ? distance > options_.min_range && distance < options_.max_range
+                   : distance >= options_.min_range && distance <= options_.max_range;
+        if (!in_range) {
           ++packet.counts.out_of_range;
           continue;
         }
+        if (block_outside) {
+          ++packet.counts.outside_window;
+          continue;
+        }
         const double offset = firingOffset(b, seq, laser, dual);
-        const double within_step = offset - step * step_duration;  // time since the step began
-        const double fraction = options_.azimuth == AzimuthInterpolation::kPerLaser
-                                    ? within_step / step_duration
-                                    : static_cast<double>(seq) / sequences;
-        double azimuth_deg =
-            (packet.block_azimuth[b] + rotation * fraction) * 0.01 - cal.azimuth_offset_deg;
+        double azimuth_deg;
+        if (nebula) {
+          // VLP-16: (laser x 2.304 + sequence x 55.296) / 110.592 = (laser + 24 sequence) / 48;
+          // 32-laser models: channel x 2.304 / 55.296 = channel / 24 (exact, for the rounding).
+          const int numerator = vlp16 ? laser + 24 * seq : channel;
+          const int denominator = vlp16 ? 48 : 24;
+          double azimuth_cdeg = base[b] +
+                                static_cast<double>(rotation[b] * numerator) / denominator -
+                                cal.azimuth_offset_deg * 100.0;
+          azimuth_cdeg -= 36000.0 * std::floor(azimuth_cdeg / 36000.0);
+          // Nearest 0.01 deg, halves up (the margin absorbs the offset's binary rounding).
+          azimuth_cdeg = std::fmod(std::floor(azimuth_cdeg + 0.5 + 1e-6), 36000.0);
+          if (vlp16 && !window.all() && !window.contains(azimuth_cdeg)) {
+            ++packet.counts.outside_window;
+            continue;
+          }
+          azimuth_deg = azimuth_cdeg * 0.01;
+        } else {
+          const double within_step = offset - step * step_duration;  // time since the step began
+          const double fraction = options_.azimuth == AzimuthInterpolation::kPerLaser
+                                      ? within_step / step_duration
+                                      : static_cast<double>(seq) / sequences;
+          azimuth_deg = (base[b] + rotation[b] * fraction) * 0.01 - cal.azimuth_offset_deg;
+        }
         azimuth_deg -= 360.0 * std::floor(azimuth_deg / 360.0);
         const double az = azimuth_deg * kDegToRad;
         const double horizontal = distance * cos_el_[laser];

@@ -27,6 +27,29 @@ namespace storey::velodyne {
 enum class AzimuthInterpolation {
   kPerLaser,  ///< block azimuth + rotation until the laser fired (the manuals' "precise azimuth")
   kPerSequence,  ///< block azimuth + rotation until the firing sequence started (VeloView 3.x)
+  /// nebula's arithmetic (tier4/nebula 606ac41, Vlp16Decoder and Vlp32Decoder), to compare with
+  /// clouds it decoded; not what the sensor does for 32-laser models (docs/formats.md):
+  /// - block b's azimuth is block b's in single return mode, block b + 1's in dual return mode
+  ///   (b >= 1), and the rotation is taken to the block 1 (single) or 2 (dual) further on;
+  /// - no rotation for the packet's last block (VLP-32C, HDL-32E: single return; VLP-16: the last
+  ///   block in either mode), the previous rotation for the other blocks without a successor;
+  /// - inside a block: VLP-16 as kPerLaser; 32-laser models channel c at c x 2.304 / 55.296 of
+  ///   the rotation (as if the lasers fired one at a time; the VLP-32C fires them in pairs);
+  /// - rounded to 0.01 deg (halves up); distances kept strictly inside (min_range, max_range);
+  /// - the azimuth window (DecodeOptions::window) tested on the block azimuth as sent (32-laser
+  ///   models) or, for the VLP-16, on this block azimuth (when min < max) and on the rounded one.
+  kNebula,
+};
+
+/// Returns are kept when their block azimuth (as sent) lies in [min_deg, max_deg], wrapping
+/// through 0 when min_deg > max_deg (nebula's cloud_min_angle / cloud_max_angle, the ROS
+/// velodyne driver's min_angle / max_angle). The default keeps everything.
+struct AzimuthWindow {
+  double min_deg = 0.0;
+  double max_deg = 360.0;
+  bool all() const { return min_deg <= 0.0 && max_deg >= 360.0; }
+  /// Whether `azimuth` [0.01 deg] lies in the window.
+  bool contains(double azimuth) const;
 };
 
 struct DecodeOptions {
@@ -35,6 +58,7 @@ struct DecodeOptions {
   double max_range = 1000.0;  ///< returns farther are dropped [m]
   /// Dual return: drop the second block's return when it equals the first's (same distance).
   bool drop_identical_second_return = true;
+  AzimuthWindow window;  ///< azimuth crop (off by default)
 };
 
 /// One laser return.
@@ -56,6 +80,7 @@ struct PacketCounts {
   std::int64_t no_return = 0;         ///< distance 0
   std::int64_t out_of_range = 0;      ///< outside [min_range, max_range]
   std::int64_t identical_second = 0;  ///< dual mode: second return equal to the first
+  std::int64_t outside_window = 0;    ///< outside DecodeOptions::window
 };
 
 struct DataPacket {

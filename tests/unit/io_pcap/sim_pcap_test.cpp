@@ -110,7 +110,7 @@ TEST(SimPcapWriter, PacketsAreTheSensorsBytes) {
 
   const velodyne::PacketDecoder decoder(
       velodyne::defaultCalibration(velodyne::Model::kVlp16),
-      velodyne::DecodeOptions{velodyne::AzimuthInterpolation::kPerLaser, 0.0, 1000.0, true});
+      velodyne::DecodeOptions{velodyne::AzimuthInterpolation::kPerLaser, 0.0, 1000.0, true, {}});
   for (int p = 0; p < 2; ++p) {
     const std::uint8_t* record = bytes.data() + 24 + p * (16 + 1248);
     const std::uint8_t* frame = record + 16;
