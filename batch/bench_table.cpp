@@ -8,6 +8,8 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
+#include <string>
+#include <vector>
 
 #include "common/error.h"
 #include "common/statistics.h"
@@ -57,12 +59,27 @@ void readSpec(const fs::path& path, BenchRow& row) {
     row.lidar_tilt_deg = std::acos(std::clamp(axis.z(), -1.0, 1.0)) * 180.0 / M_PI;
     row.imu_rate_hz = spec.sensors.imu.rate;
     row.imu_grade = spec.sensors.imu.grade ? sim::toString(*spec.sensors.imu.grade) : "custom";
-    if (b.atrium.rooms > 0) row.features = "atrium " + std::to_string(b.atrium.rooms);
+    // The plan: footprint, split levels, single-loaded corridor, atrium,
+    // leaning partitions, rooms walked into; "corridor" when none.
+    std::vector<std::string> plan;
+    const auto& arms = b.arms.positions;
+    if (!arms.empty()) {
+      const bool at_end = arms[0] == 0.0 || arms[0] == 1.0;
+      plan.push_back(arms.size() >= 2 ? "U" : at_end ? "L" : "T");
+      if (!b.arms.rises.empty()) plan.push_back("split level");
+    }
+    if (b.single_loaded) plan.push_back("single-loaded");
+    if (b.atrium.rooms > 0) plan.push_back("atrium " + std::to_string(b.atrium.rooms));
     if (std::abs(b.partition_angle - M_PI / 2) > 1e-9) {
       char walls[32];
       std::snprintf(walls, sizeof(walls), "walls %.0f deg", b.partition_angle * 180.0 / M_PI);
-      row.features += (row.features.empty() ? "" : ", ") + std::string(walls);
+      plan.push_back(walls);
     }
+    if (spec.robot.rooms_entered > 0)
+      plan.push_back(std::to_string(spec.robot.rooms_entered) + " rooms entered");
+    for (const std::string& p : plan) row.features += (row.features.empty() ? "" : ", ") + p;
+    row.stairs = sim::toString(b.stairwell.kind);
+    if (b.stairwell.width >= 4.0) row.stairs += " wide";
   } catch (const Error& e) {
     fail(row, e.what());
   }
@@ -173,7 +190,7 @@ const Column kColumns[] = {
 std::string benchMarkdown(const std::vector<BenchRow>& rows, const std::string& title) {
   std::ostringstream md;
   md << "### " << title << "\n\n";
-  md << "| seed | storeys (found) | wings | plan | storey m | stairs deg | LiDAR (tilt deg) | "
+  md << "| seed | storeys (found) | wings | plan | storey m | stairs (deg) | LiDAR (tilt deg) | "
         "IMU (Hz) | motion";
   for (const Column& c : kColumns) md << " | " << c.title;
   md << " |\n|---:|---:|---:|---|---|---:|---|---|---";
@@ -184,9 +201,10 @@ std::string benchMarkdown(const std::vector<BenchRow>& rows, const std::string& 
     std::snprintf(text, sizeof(text), "%.1f-%.1f", r.min_storey_height, r.max_storey_height);
     md << "| " << r.seed << " | " << r.storeys << " ("
        << (r.storeys_found ? std::to_string(*r.storeys_found) : "–") << ") | " << r.wings << " | "
-       << (r.features.empty() ? "corridor" : r.features) << " | " << text << " | "
-       << cell(r.stair_slope_deg, 0) << " | " << r.lidar << " (" << cell(r.lidar_tilt_deg, 0)
-       << ") | " << r.imu_grade << " (" << cell(r.imu_rate_hz, 0) << ") | " << r.motion;
+       << (r.features.empty() ? "corridor" : r.features) << " | " << text << " | " << r.stairs
+       << " (" << cell(r.stair_slope_deg, 0) << ") | " << r.lidar << " ("
+       << cell(r.lidar_tilt_deg, 0) << ") | " << r.imu_grade << " (" << cell(r.imu_rate_hz, 0)
+       << ") | " << r.motion;
     if (!r.error.empty()) {
       md << " | **failed:** " << r.error;
       for (std::size_t i = 1; i < std::size(kColumns); ++i) md << " | ";
@@ -227,6 +245,7 @@ std::string benchJson(const std::vector<BenchRow>& rows) {
               {"wings", r.wings},
               {"storey_height_m", {r.min_storey_height, r.max_storey_height}},
               {"stair_slope_deg", r.stair_slope_deg},
+              {"stairs", r.stairs},
               {"lidar", r.lidar},
               {"lidar_tilt_deg", r.lidar_tilt_deg},
               {"imu_rate_hz", r.imu_rate_hz},

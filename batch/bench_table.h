@@ -18,13 +18,15 @@ struct BenchRow {
   int wings = 0;
   double min_storey_height = 0.0, max_storey_height = 0.0;  ///< [m]
   double stair_slope_deg = 0.0;
+  std::string stairs = "switchback";  ///< the stairs' kind, "wide" when 4 m or more
   std::string lidar;
   double lidar_tilt_deg = 0.0;  ///< angle between the LiDAR's axis and the body's up axis
   double imu_rate_hz = 0.0;
   std::string imu_grade = "custom";  ///< tactical, consumer or custom
   std::string motion = "legged";
-  /// The plan's special parts: "atrium N" (rooms), "walls D" (partition angle
-  /// [deg] when not 90); empty for a plain corridor building.
+  /// The plan's special parts: "L", "T" or "U" (arms), "split level",
+  /// "single-loaded", "atrium N" (rooms), "walls D" (partition angle [deg]
+  /// when not 90), "N rooms entered"; empty for a plain corridor building.
   std::string features;
   // The run and its evaluation.
   std::optional<double> path_m, duration_s;
