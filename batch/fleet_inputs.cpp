@@ -29,12 +29,18 @@ bool hasPcdFiles(const fs::path& dir) {
   return false;
 }
 
-bool isLogFileName(const fs::path& path) {
-  const std::string ext = lower(path.extension().string());
-  return ext == ".bag" || ext == ".pcap" || ext == ".pcapng";
+/// A rosbag2 folder: metadata.yaml beside its .db3 or .mcap files (one log).
+bool isRosbag2Folder(const fs::path& dir) {
+  std::error_code ec;
+  return fs::is_regular_file(dir / "metadata.yaml", ec);
 }
 
-/// The logs under `root`: log files by name and PCD folders (not entered).
+bool isLogFileName(const fs::path& path) {
+  const std::string ext = lower(path.extension().string());
+  return ext == ".bag" || ext == ".pcap" || ext == ".pcapng" || ext == ".db3" || ext == ".mcap";
+}
+
+/// The logs under `root`: log files by name, rosbag2 and PCD folders (not entered).
 void searchFolder(const fs::path& root, std::vector<fs::path>& found) {
   std::error_code ec;
   std::vector<fs::path> entries;
@@ -43,7 +49,7 @@ void searchFolder(const fs::path& root, std::vector<fs::path>& found) {
   std::sort(entries.begin(), entries.end());
   for (const fs::path& p : entries) {
     if (fs::is_directory(p, ec)) {
-      if (hasPcdFiles(p))
+      if (hasPcdFiles(p) || isRosbag2Folder(p))
         found.push_back(p);
       else
         searchFolder(p, found);
@@ -243,11 +249,13 @@ FleetInputs collectFleetInputs(const std::vector<std::string>& input_args,
     const fs::path path(arg);
     std::error_code ec;
     if (!fs::exists(path, ec)) throw Error(arg + ": no such log, folder or manifest");
-    if (fs::is_directory(path, ec) && !hasPcdFiles(path)) {
+    if (fs::is_directory(path, ec) && !hasPcdFiles(path) && !isRosbag2Folder(path)) {
       std::vector<fs::path> found;
       searchFolder(path, found);
       if (found.empty())
-        throw Error(arg + ": no logs found in the folder (*.bag, *.pcap, *.pcapng, PCD folders)");
+        throw Error(arg +
+                    ": no logs found in the folder (*.bag, *.pcap, *.pcapng, *.db3, *.mcap, "
+                    "rosbag2 and PCD folders)");
       for (const fs::path& p : found) {
         Named named;
         named.log.path = fs::absolute(p).lexically_normal().string();

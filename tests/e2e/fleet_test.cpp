@@ -45,13 +45,23 @@ TEST(FleetInputs, FolderSearchAndManifest) {
   dir.write("site/a/notes.txt", "x");
   dir.write("site/b/scans/0001.pcd", "x");  // a PCD folder is one log
   dir.write("site/b/capture.PCAP", "x");
+  fs::create_directories(dir.path() / "site/c/ros2walk");  // a rosbag2 folder is one log
+  dir.write("site/c/ros2walk/metadata.yaml", "x");
+  dir.write("site/c/ros2walk/ros2walk_0.db3", "x");
+  dir.write("site/c/outdoor.mcap", "x");
   dir.write("calib.yaml", "x");
   const FleetInputs found = collectFleetInputs({dir.file("site")}, "");
-  ASSERT_EQ(found.logs.size(), 3u);
+  ASSERT_EQ(found.logs.size(), 5u);
   EXPECT_EQ(found.logs[0].name, "walk");
   EXPECT_EQ(found.logs[1].name, "capture");
   EXPECT_EQ(found.logs[2].name, "scans");
+  EXPECT_EQ(found.logs[3].name, "outdoor");
+  EXPECT_EQ(found.logs[4].name, "ros2walk");
   EXPECT_TRUE(found.logs[2].calibration.empty());
+  // A rosbag2 folder given itself is that log, not a folder to search.
+  const FleetInputs one = collectFleetInputs({dir.file("site/c/ros2walk")}, "");
+  ASSERT_EQ(one.logs.size(), 1u);
+  EXPECT_EQ(one.logs[0].name, "ros2walk");
 
   dir.write("fleet.yaml", R"(config: base.yaml
 slurm: {partition: short, mem: 8G, extra_args: ["--qos=low"]}
