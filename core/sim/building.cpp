@@ -82,7 +82,7 @@ class Generator {
     L_ = b_.corridor_length;
     yc_ = b_.corridor_width / 2;
     wt_ = b_.wall_thickness;
-    if (hasStairs()) stairs_.emplace(b_.stairwell, z_, L_, yc_, wt_, spec_.source);
+    if (hasStairs()) stairs_.emplace(b_.stairwell, b_.storey_heights, L_, yc_, wt_, spec_.source);
     y_north_ = yc_ + std::max(b_.room_depth, hasStairs() ? stairs_->yBack() - yc_ : 0.0);
     y_south_ = -yc_ - b_.room_depth;
     x_turn_west_ = wt_ / 2 + kEndClearance;

@@ -16,13 +16,14 @@ constexpr double kStepUnderside = 0.12;      ///< concrete below each step [m]
 
 }  // namespace
 
-Stairs::Stairs(const StairwellSpec& spec, const std::vector<double>& floor_z, double length,
+Stairs::Stairs(const StairwellSpec& spec, const std::vector<double>& storey_heights, double length,
                double yc, double wall_thickness, const std::string& source)
-    : spec_(spec), z_(floor_z), yc_(yc), wt_(wall_thickness) {
+    : spec_(spec), z_(1, 0.0), yc_(yc), wt_(wall_thickness) {
+  for (double h : storey_heights) z_.push_back(z_.back() + h);
   double run_max = 0.0, run_second_max = 0.0;
   for (std::size_t k = 0; k + 2 < z_.size(); ++k) {
     Flight f;
-    const double h = z_[k + 1] - z_[k];
+    const double h = storey_heights[k];
     f.risers = std::max(4, static_cast<int>(std::lround(h / spec_.riser)));
     f.riser = h / f.risers;
     f.run = (f.risers - 1) * spec_.tread;
@@ -230,49 +231,19 @@ std::vector<RouteVertex> Stairs::climb(int k, double body_height, double walk, d
 
 std::vector<RouteVertex> Stairs::descend(int k, double body_height, double walk, double climb,
                                          bool more) const {
-  const Flight& f = flights_[k];
-  const double zf = z_[k] + body_height, zn = z_[k + 1] + body_height;
-  if (lShaped()) {
-    const double zl = zf + f.landing_z, y_row = (y_row0_ + y_row1_) / 2;
-    const double x_col = entryX(k), x_walk = exitX(k);
-    std::vector<RouteVertex> route{{Vector3d(x_walk, y_row, zn), walk},
-                                   {Vector3d(col_x0_ - f.run_second, y_row, zn), climb},
-                                   {Vector3d(col_x0_, y_row, zl), walk},
-                                   {Vector3d(x_col, y_row, zl), walk},
-                                   {Vector3d(x_col, y_flights_ + f.run_first, zl), climb},
-                                   {Vector3d(x_col, y_flights_, zf), walk}};
-    if (more) {
-      // Across the floor landing to the walkway, and up it to the next flight down.
-      const double y_turn = yc_ + spec_.floor_landing_depth / 2;
-      route.push_back({Vector3d(x_col, y_turn, zf), walk});
-      route.push_back({Vector3d(x_walk, y_turn, zf), walk});
-    }
-    return route;
-  }
-  if (straight()) {
-    // The next flight down starts at the same end, in the other lane.
-    const bool even = k % 2 == 0;
-    const double y = even ? (ya0_ + ya1_) / 2 : (yb0_ + yb1_) / 2;
-    const double foot = even ? x_west_foot_ : x_east_foot_;
-    const double head = even ? x_west_foot_ + f.run : x_east_foot_ - f.run;
-    return {{Vector3d(exitX(k), y, zn), walk},
-            {Vector3d(head, y, zn), climb},
-            {Vector3d(foot, y, zf), walk},
-            {Vector3d(entryX(k), y, zf), walk}};
-  }
-  const double zl = zf + f.landing_z;
-  const double y_landing = (y_flights_ + f.run_first + y_back_ - wt_ / 2) / 2;
-  std::vector<RouteVertex> route{{Vector3d(x_west_lane_, y_flights_, zn), climb},
-                                 {Vector3d(x_west_lane_, y_flights_ + f.run_second, zl), walk},
-                                 {Vector3d(x_west_lane_, y_landing, zl), walk},
-                                 {Vector3d(x_east_lane_, y_landing, zl), walk},
-                                 {Vector3d(x_east_lane_, y_flights_ + f.run_first, zl), climb},
-                                 {Vector3d(x_east_lane_, y_flights_, zf), walk}};
-  if (more) {
-    // A U-turn on the floor landing to the next flight down.
+  // The climb walked backwards: each segment keeps its speed (a vertex's
+  // speed is that of the segment starting at it).
+  const std::vector<RouteVertex> up = this->climb(k, body_height, walk, climb);
+  std::vector<RouteVertex> route;
+  for (std::size_t i = up.size(); i-- > 0;)
+    route.push_back({up[i].p, i > 0 ? up[i - 1].speed : walk});
+  if (more && !straight()) {
+    // Across the floor landing to where the next flight down starts (a
+    // straight flight's starts at the same end, in the other lane).
     const double y_turn = yc_ + spec_.floor_landing_depth / 2;
-    route.push_back({Vector3d(x_east_lane_, y_turn, zf), walk});
-    route.push_back({Vector3d(x_west_lane_, y_turn, zf), walk});
+    const double z = route.back().p.z();
+    route.push_back({Vector3d(entryX(k), y_turn, z), walk});
+    route.push_back({Vector3d(exitX(k - 1), y_turn, z), walk});
   }
   return route;
 }

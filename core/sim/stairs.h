@@ -26,12 +26,12 @@ namespace storey::sim {
 
 class Stairs {
  public:
-  /// Lays the stairs out between the floors at `floor_z` (top of each
-  /// storey's floor slab, the roof last) north of a corridor `length` long
-  /// and 2 yc wide with walls `wall_thickness` thick. Throws storey::Error
-  /// naming `source` when they do not fit the corridor.
-  Stairs(const StairwellSpec& spec, const std::vector<double>& floor_z, double length, double yc,
-         double wall_thickness, const std::string& source);
+  /// Lays the stairs out between the storeys of `storey_heights` (floor to
+  /// floor, bottom up; the ground floor's top at z = 0) north of a corridor
+  /// `length` long and 2 yc wide with walls `wall_thickness` thick. Throws
+  /// storey::Error naming `source` when they do not fit the corridor.
+  Stairs(const StairwellSpec& spec, const std::vector<double>& storey_heights, double length,
+         double yc, double wall_thickness, const std::string& source);
 
   double x0() const { return x0_; }         ///< the west wall of the stairs (centreline)
   double x1() const { return x1_; }         ///< the east wall (centreline)
