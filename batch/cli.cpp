@@ -30,6 +30,10 @@ void addCommonOptions(CLI::App& cmd, storey::cli::CommonOptions& common) {
   cmd.add_option(
       "--velodyne-calibration", common.velodyne_calibration,
       "VeloView calibration XML for a Velodyne pcap (default: the model's datasheet table)");
+  cmd.add_option("--velodyne-cut-angle", common.velodyne_cut_angle_deg,
+                 "azimuth [deg, 0..360) where Velodyne packets (pcap, VelodyneScan) are cut into "
+                 "scans (default 0: where the azimuth wraps; the calibration file's "
+                 "lidar.cut_angle_deg)");
 }
 
 }  // namespace

@@ -19,6 +19,9 @@ struct CommonOptions {
   std::optional<double> imu_csv_time_offset;  ///< --imu-time-offset: added to the CSV stamps [s]
   std::string
       velodyne_calibration;  ///< --velodyne-calibration: VeloView XML (input.velodyne_calibration)
+  /// --velodyne-cut-angle: where Velodyne packets are cut into scans [deg]
+  /// (input.velodyne_cut_angle_deg)
+  std::optional<double> velodyne_cut_angle_deg;
 };
 
 struct RunOptions {

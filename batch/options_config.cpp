@@ -13,6 +13,10 @@ Config configFromOptions(const CommonOptions& options) {
   if (!options.velodyne_calibration.empty()) {
     config.input.velodyne_calibration = options.velodyne_calibration;
   }
+  if (options.velodyne_cut_angle_deg) {
+    config.input.velodyne_cut_angle_deg = *options.velodyne_cut_angle_deg;
+    config.input.validate();
+  }
   return config;
 }
 

@@ -26,6 +26,7 @@ void visitInput(V& v, InputConfig& c) {
   v.field("imu_csv_time_offset", c.imu_csv_time_offset);
   v.field("velodyne_model", c.velodyne_model);
   v.field("velodyne_calibration", c.velodyne_calibration);
+  v.field("velodyne_cut_angle_deg", c.velodyne_cut_angle_deg);
   v.field("pcap_clock", c.pcap_clock);
   v.field("pcap_data_port", c.pcap_data_port);
   v.field("pcap_position_port", c.pcap_position_port);
@@ -304,6 +305,7 @@ void applyCalibrationFile(Config& config, const std::string& path) {
   result.sensor = calibration.sensor;
   result.input.points_topic = calibration.points_topic;
   result.input.imu_topic = calibration.imu_topic;
+  result.input.velodyne_cut_angle_deg = calibration.velodyne_cut_angle_deg;
   try {
     result.validate();
   } catch (const Error& e) {
@@ -319,7 +321,8 @@ Config loadRunConfig(const std::string& config_path, const std::string& calibrat
 }
 
 Calibration calibrationOf(const Config& config) {
-  return {config.sensor, config.input.points_topic, config.input.imu_topic};
+  return {config.sensor, config.input.points_topic, config.input.imu_topic,
+          config.input.velodyne_cut_angle_deg};
 }
 
 void Config::validate() const {

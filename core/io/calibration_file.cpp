@@ -24,6 +24,11 @@ Calibration readCalibrationFile(const std::string& path, const Calibration& base
   readImuNoise(imu, result.sensor.imu);
   YamlSection lidar = top.section("lidar");
   readLidarModel(lidar, "model", result.sensor.lidar_model);
+  lidar.read("cut_angle_deg", result.velodyne_cut_angle_deg);
+  if (lidar.has("cut_angle_deg") &&
+      !(result.velodyne_cut_angle_deg >= 0.0 && result.velodyne_cut_angle_deg < 360.0)) {
+    lidar.fail("cut_angle_deg", "must be in [0, 360) degrees");
+  }
   lidar.finish();
   YamlSection topics = top.section("topics");
   topics.read("points", result.points_topic);
@@ -52,7 +57,12 @@ void writeCalibrationFile(const Calibration& calibration, const std::string& pat
   out << YAML::Key << "imu" << YAML::Value;
   writeImuNoise(out, sensor.imu);
   out << YAML::Key << "lidar" << YAML::Value << YAML::BeginMap << YAML::Key << "model"
-      << YAML::Value << toString(sensor.lidar_model) << YAML::EndMap;
+      << YAML::Value << toString(sensor.lidar_model);
+  if (calibration.velodyne_cut_angle_deg != 0.0) {
+    out << YAML::Key << "cut_angle_deg" << YAML::Value << calibration.velodyne_cut_angle_deg
+        << YAML::Comment("Velodyne packets: frames start at this azimuth (deg)");
+  }
+  out << YAML::EndMap;
   if (!calibration.points_topic.empty() || !calibration.imu_topic.empty()) {
     out << YAML::Key << "topics" << YAML::Value << YAML::BeginMap;
     if (!calibration.points_topic.empty())

@@ -10,6 +10,8 @@ void InputConfig::validate() const {
   requireKey(velodyne_model == "auto" || velodyne_model == "VLP-16" ||
                  velodyne_model == "VLP-32C" || velodyne_model == "HDL-32E",
              "input.velodyne_model", "must be auto, VLP-16, VLP-32C or HDL-32E");
+  requireKey(velodyne_cut_angle_deg >= 0.0 && velodyne_cut_angle_deg < 360.0,
+             "input.velodyne_cut_angle_deg", "must be in [0, 360)");
   requireKey(pcap_clock == "sensor" || pcap_clock == "capture", "input.pcap_clock",
              "must be sensor or capture");
   requireKey(pcap_data_port >= 0 && pcap_data_port <= 65535, "input.pcap_data_port",

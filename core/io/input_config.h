@@ -15,6 +15,9 @@ struct InputConfig {
       0.0;  ///< added to the CSV's stamps to put them on the LiDAR clock [s]
   std::string velodyne_model = "auto";  ///< pcap: auto (from packets), VLP-16, VLP-32C, HDL-32E
   std::string velodyne_calibration;  ///< pcap: VeloView calibration XML; empty = the manual's table
+  /// Velodyne packets (pcap, VelodyneScan): a frame starts where the head
+  /// passes this azimuth [deg, 0..360); 0 = where the azimuth wraps (VeloView).
+  double velodyne_cut_angle_deg = 0.0;
   std::string pcap_clock =
       "sensor";               ///< pcap: "sensor" (packet timestamps) or "capture" (record times)
   int pcap_data_port = 2368;  ///< pcap: UDP port of data packets; 0 = any port

@@ -125,7 +125,7 @@ Scan LidarSimulator::simulateScan(int n, std::vector<VelodyneFiring>* firings,
     if (firings != nullptr) {
       firing = &firings->emplace_back();
       firing->t_ns = t_ns;
-      firing->azimuth_deg = 180.0 + 360.0 * turns;
+      firing->azimuth_deg = kScanStartAzimuthDeg + 360.0 * turns;
       if (firing->azimuth_deg >= 360.0) firing->azimuth_deg -= 360.0;
     }
     const std::int64_t column = k - k0;

@@ -9,7 +9,8 @@
 /// timestamp_first_packet). Ouster: column k fires every beam at once at
 /// round(k / (columns * rate)); scan n is columns [n, n + 1) * columns and is
 /// stamped with its first column (n / rate). Per-point times are in [0, 1 / rate).
-/// Azimuth: pi (straight back) at t = 0, turning clockwise seen from above.
+/// Azimuth: pi (straight back) at t = 0, turning clockwise seen from above,
+/// so every scan starts at kScanStartAzimuthDeg.
 #include <Eigen/Core>
 #include <cstdint>
 #include <vector>
@@ -23,6 +24,11 @@
 #include "types/scan.h"
 
 namespace storey::sim {
+
+/// The azimuth at which the head is at t = 0 and so where every Velodyne scan
+/// starts [deg] (straight back); the packets' cut angle that gives the same
+/// scans (input.velodyne_cut_angle_deg).
+inline constexpr double kScanStartAzimuthDeg = 180.0;
 
 struct LidarNoise {
   double range_sigma = 0.0;      ///< [m]

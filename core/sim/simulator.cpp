@@ -18,6 +18,7 @@
 #include "common/error.h"
 #include "common/log.h"
 #include "io/calibration_file.h"
+#include "io/velodyne/frame_assembler.h"
 #include "sim/bag_writer.h"
 #include "sim/imu_csv_writer.h"
 #include "sim/imu_simulator.h"
@@ -71,8 +72,11 @@ void writeStoreys(const std::string& path, const BuildingSpec& spec, const Build
 }
 
 /// The true sensor set-up. With perfect sensors the spec's noise is still
-/// reported: a pipeline needs non-zero weights.
-void writeCalibration(const std::string& path, const BuildingSpec& spec, bool packets) {
+/// reported: a pipeline needs non-zero weights. A log with Velodyne packets
+/// (`velodyne_packets`: a capture or VelodyneScan topics) gets the cut angle
+/// that decodes them into the point-cloud scans (kScanStartAzimuthDeg).
+void writeCalibration(const std::string& path, const BuildingSpec& spec, bool packets,
+                      bool velodyne_packets) {
   Calibration calibration;
   const SensorsSpec& s = spec.sensors;
   calibration.sensor.T_imu_lidar = s.T_body_imu.inverse() * s.T_body_lidar;
@@ -86,6 +90,7 @@ void writeCalibration(const std::string& path, const BuildingSpec& spec, bool pa
   calibration.sensor.imu.accel_random_walk = s.imu.accel_random_walk;
   calibration.points_topic = packets ? kPacketsTopic : s.points_topic;
   calibration.imu_topic = s.imu_topic;
+  if (velodyne_packets) calibration.velodyne_cut_angle_deg = kScanStartAzimuthDeg;
   writeCalibrationFile(calibration, path);
 }
 
@@ -178,7 +183,10 @@ SimulationResult simulate(const BuildingSpec& spec, const SimulationOptions& opt
   StagingDir staging(out_dir);
   world.building.mesh.writePly(staging.file(kMeshFile));
   writeStoreys(staging.file(kStoreysFile), spec, world.building);
-  writeCalibration(staging.file(kCalibrationFile), spec, formats.packets);
+  writeCalibration(staging.file(kCalibrationFile), spec, formats.packets,
+                   formats.packets || formats.pcap);
+  // Where the calibration's cut angle makes a reader start the packets' frames.
+  const int cut_azimuth = velodyne::cutAzimuth(kScanStartAzimuthDeg);
   writeFileAtomically(staging.file(kSpecFile), buildingSpecYaml(spec));
 
   report(progress, 0.0, "IMU");
@@ -228,8 +236,9 @@ SimulationResult simulate(const BuildingSpec& spec, const SimulationOptions& opt
   VelodyneScanMessage packet_message;
   std::size_t packets_per_message = 0;
   if (formats.packets) {
-    packets = std::make_unique<VelodynePacketBuilder>(
-        start_ns, sensors.lidar.rotation_rate, *velodyneModel(sensors.lidar.model), kPacketsTopic);
+    packets = std::make_unique<VelodynePacketBuilder>(start_ns, sensors.lidar.rotation_rate,
+                                                      *velodyneModel(sensors.lidar.model),
+                                                      kPacketsTopic, cut_azimuth);
     packets_per_message =
         static_cast<std::size_t>(std::ceil(packets->packetRate() / sensors.lidar.rotation_rate));
     packet_message.frame_id = sensors.lidar_frame_id;
@@ -238,7 +247,7 @@ SimulationResult simulate(const BuildingSpec& spec, const SimulationOptions& opt
   if (options.formats.pcap) {
     pcap = std::make_unique<VelodynePcapWriter>(staging.file(kPcapFile), start_ns,
                                                 sensors.lidar.rotation_rate,
-                                                *velodyneModel(sensors.lidar.model));
+                                                *velodyneModel(sensors.lidar.model), cut_azimuth);
   }
   const double gyro_variance = std::pow(sensors.imu.gyro_noise_density, 2) * sensors.imu.rate;
   const double accel_variance = std::pow(sensors.imu.accel_noise_density, 2) * sensors.imu.rate;
@@ -357,8 +366,10 @@ SimulationResult simulate(const BuildingSpec& spec, const SimulationOptions& opt
   if (pcap || packets) {
     const std::vector<std::int64_t>& frame_starts =
         pcap ? pcap->frameStarts() : packets->frameStarts();
-    // The capture's frames start where the azimuth wraps, half a revolution
-    // away from the bag's scans: their own ground truth, at their stamps.
+    // The packets' frames (cut at the calibration's angle) start at a block
+    // boundary, within one firing sequence of a scan's stamp (a VLP-16 block
+    // holds two; the block azimuth is rounded to 0.01 deg): their own ground
+    // truth, at their stamps.
     writeFileAtomically(staging.file(kPcapLidarTruthFile), [&](std::ostream& out) {
       out << "# timestamp x y z qx qy qz qw (LiDAR frame in the world frame, at the stamp of each "
              "frame of "

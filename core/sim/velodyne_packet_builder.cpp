@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "common/error.h"
+#include "io/velodyne/frame_assembler.h"
 
 namespace storey::sim {
 namespace {
@@ -50,11 +51,13 @@ std::uint16_t azimuthField(double azimuth_deg) {
 }  // namespace
 
 VelodynePacketBuilder::VelodynePacketBuilder(std::int64_t start_ns, double rotation_hz,
-                                             velodyne::Model model, std::string context)
+                                             velodyne::Model model, std::string context,
+                                             int cut_azimuth)
     : start_ns_(start_ns),
       rotation_hz_(rotation_hz),
       model_(model),
       context_(std::move(context)),
+      cut_azimuth_(cut_azimuth),
       lasers_(vd::laserCount(model)),
       sequences_per_block_(vd::kChannelsPerBlock / vd::laserCount(model)),
       period_ns_(std::llround(vd::sequencePeriod(model) * 1e9)) {
@@ -103,7 +106,9 @@ void VelodynePacketBuilder::build(BuiltPacket& out) {
     const int first = sequences_per_block_ * b;  // the block's first sequence
     const std::uint16_t azimuth = azimuthField(pending_[first].azimuth_deg);
     put16le(block + 2, azimuth);
-    if ((azimuth < last_block_azimuth_ || last_block_azimuth_ < 0) && first < real_sequences_) {
+    const bool starts =
+        last_block_azimuth_ < 0 || vd::startsFrame(last_block_azimuth_, azimuth, cut_azimuth_);
+    if (starts && first < real_sequences_) {
       frame_starts_.push_back(start_ns_ + pending_[first].t_ns);
     }
     last_block_azimuth_ = azimuth;

@@ -28,9 +28,10 @@ class VelodynePacketBuilder {
  public:
   /// `start_ns`: the absolute time of VelodyneFiring::t_ns = 0; `rotation_hz`
   /// continues the azimuth over the no-return sequences that fill the last
-  /// packet; `context` names the output in errors.
+  /// packet; `context` names the output in errors; `cut_azimuth` [0.01 deg] is
+  /// where a reader cuts frames (frameStarts; velodyne::cutAzimuth).
   VelodynePacketBuilder(std::int64_t start_ns, double rotation_hz, velodyne::Model model,
-                        std::string context);
+                        std::string context, int cut_azimuth = 0);
 
   /// Adds the next firing sequence (it must follow the last one at the
   /// model's period, else storey::Error); true when `out` received a packet.
@@ -40,9 +41,10 @@ class VelodynePacketBuilder {
 
   std::int64_t packets() const { return packets_; }
   /// Absolute times of the first firing of the blocks that start a frame
-  /// when the packets are read as VeloView (and Storey's reader) cut them: the
-  /// first block, then every block whose azimuth is smaller than the
-  /// previous block's [ns]. Blocks of the sequences finish() adds are left out.
+  /// when Storey's reader cuts the packets at `cut_azimuth` (velodyne::
+  /// startsFrame; cut 0: as VeloView, where the azimuth wraps): the first
+  /// block, then every block that passes the cut [ns]. Blocks of the
+  /// sequences finish() adds are left out.
   const std::vector<std::int64_t>& frameStarts() const { return frame_starts_; }
   velodyne::Model model() const { return model_; }
   /// Data packets per second.
@@ -55,6 +57,7 @@ class VelodynePacketBuilder {
   double rotation_hz_;
   velodyne::Model model_;
   std::string context_;
+  int cut_azimuth_;                      ///< [0.01 deg]
   int lasers_;                           ///< per firing sequence
   int sequences_per_block_;              ///< 2 (VLP-16) or 1
   std::int64_t period_ns_;               ///< between firing sequences

@@ -65,8 +65,8 @@ void setIpv4IdAndChecksum(std::uint8_t* ip, std::uint16_t id) {
 }  // namespace
 
 VelodynePcapWriter::VelodynePcapWriter(const std::string& path, std::int64_t start_ns,
-                                       double rotation_hz, velodyne::Model model)
-    : path_(path), builder_(start_ns, rotation_hz, model, path) {
+                                       double rotation_hz, velodyne::Model model, int cut_azimuth)
+    : path_(path), builder_(start_ns, rotation_hz, model, path, cut_azimuth) {
   file_ = std::fopen(path.c_str(), "wb");
   if (file_ == nullptr) throw Error(path + ": cannot open for writing: " + std::strerror(errno));
   std::setvbuf(file_, nullptr, _IOFBF, 1 << 20);

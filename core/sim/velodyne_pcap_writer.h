@@ -34,9 +34,10 @@ class VelodynePcapWriter {
   /// Opens `path` for writing (truncates). `start_ns` is the absolute time
   /// of VelodyneFiring::t_ns = 0; `rotation_hz` is the spin rate (only used
   /// to continue the azimuth over the no-return sequences that fill the last
-  /// packet). Throws storey::Error naming the file.
+  /// packet); `cut_azimuth` [0.01 deg] is where a reader cuts frames
+  /// (frameStarts). Throws storey::Error naming the file.
   VelodynePcapWriter(const std::string& path, std::int64_t start_ns, double rotation_hz,
-                     velodyne::Model model = velodyne::Model::kVlp16);
+                     velodyne::Model model = velodyne::Model::kVlp16, int cut_azimuth = 0);
   ~VelodynePcapWriter();
   VelodynePcapWriter(const VelodynePcapWriter&) = delete;
   VelodynePcapWriter& operator=(const VelodynePcapWriter&) = delete;

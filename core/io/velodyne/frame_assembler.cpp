@@ -1,6 +1,13 @@
 #include "io/velodyne/frame_assembler.h"
 
+#include <cmath>
+
 namespace storey::velodyne {
+
+int cutAzimuth(double cut_angle_deg) {
+  const long a = std::lround(cut_angle_deg * 100.0) % 36000;
+  return static_cast<int>(a < 0 ? a + 36000 : a);
+}
 
 void FrameAssembler::close(std::vector<Scan>& done) {
   if (open_ && !current_.points.empty()) done.push_back(std::move(current_));
@@ -8,7 +15,9 @@ void FrameAssembler::close(std::vector<Scan>& done) {
   open_ = false;
 }
 
-void FrameAssembler::flush(std::vector<Scan>& done) { close(done); }
+void FrameAssembler::flush(std::vector<Scan>& done) {
+  close(done);
+}
 
 void FrameAssembler::add(const DataPacket& packet, std::int64_t packet_ns,
                          std::vector<Scan>& done) {
@@ -18,11 +27,11 @@ void FrameAssembler::add(const DataPacket& packet, std::int64_t packet_ns,
     const int azimuth = packet.block_azimuth[b];
     const std::int64_t block_ns =
         packet_ns + static_cast<std::int64_t>(decoder_.firingOffset(b, 0, 0, dual) * 1e9 + 0.5);
-    const bool wrapped = last_azimuth_ >= 0 && azimuth < last_azimuth_;
+    const bool cut = last_azimuth_ >= 0 && startsFrame(last_azimuth_, azimuth, cut_azimuth_);
     const bool gap = open_ && block_ns - last_block_ns_ > max_gap_ns_;
     if (gap) ++gap_cuts_;
-    if (wrapped || gap || !open_) {
-      if (open_ || wrapped || gap) close(done);
+    if (cut || gap || !open_) {
+      if (open_ || cut || gap) close(done);
       open_ = true;
       ++frames_started_;
       current_.stamp_ns = block_ns;

@@ -58,6 +58,7 @@ VelodynePcapOptions velodynePcapOptions(const InputConfig& input, const SensorCo
   o.calibration_xml = in.velodyne_calibration;
   o.min_range = in.min_range;
   o.max_range = in.max_range;
+  o.cut_angle_deg = in.velodyne_cut_angle_deg;
   o.capture_clock = in.pcap_clock == "capture";
   o.data_port = static_cast<std::uint16_t>(in.pcap_data_port);
   o.position_port = static_cast<std::uint16_t>(in.pcap_position_port);
@@ -157,7 +158,8 @@ struct VelodynePcapReader::Impl {
     decode.min_range = options_.min_range;
     decode.max_range = options_.max_range;
     decoder_ = std::make_unique<velodyne::PacketDecoder>(std::move(calibration), decode);
-    frames_ = std::make_unique<velodyne::FrameAssembler>(*decoder_);
+    frames_ = std::make_unique<velodyne::FrameAssembler>(
+        *decoder_, velodyne::kMaxFrameGapS, velodyne::cutAzimuth(options_.cut_angle_deg));
     if (!options_.imu_csv.empty()) {
       csv_ = std::make_unique<ImuCsvReader>(options_.imu_csv, options_.imu_csv_offset_ns);
       if (probe_.position_packets > 0) {

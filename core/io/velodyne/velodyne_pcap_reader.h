@@ -42,6 +42,7 @@ struct VelodynePcapOptions {
   velodyne::AzimuthInterpolation azimuth = velodyne::AzimuthInterpolation::kPerLaser;
   double min_range = 0.3;              ///< [m]
   double max_range = 120.0;            ///< [m]
+  double cut_angle_deg = 0.0;          ///< frames start at this azimuth [deg]; 0 = where it wraps
   bool capture_clock = false;          ///< stamp with record times instead of packet timestamps
   std::uint16_t data_port = 2368;      ///< 0 = any port (recognised by size and block flags)
   std::uint16_t position_port = 8308;  ///< 0 = any port

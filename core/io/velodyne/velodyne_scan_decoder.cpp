@@ -16,6 +16,7 @@ VelodyneScanOptions velodyneScanOptions(const InputConfig& input) {
   o.calibration_xml = input.velodyne_calibration;
   o.min_range = input.min_range;
   o.max_range = input.max_range;
+  o.cut_angle_deg = input.velodyne_cut_angle_deg;
   o.capture_clock = input.pcap_clock == "capture";
   return o;
 }
@@ -59,7 +60,8 @@ void VelodyneScanDecoder::start(const VelodyneScanMessage& message) {
   decode.min_range = options_.min_range;
   decode.max_range = options_.max_range;
   decoder_ = std::make_unique<velodyne::PacketDecoder>(std::move(calibration), decode);
-  frames_ = std::make_unique<velodyne::FrameAssembler>(*decoder_);
+  frames_ = std::make_unique<velodyne::FrameAssembler>(
+      *decoder_, velodyne::kMaxFrameGapS, velodyne::cutAzimuth(options_.cut_angle_deg));
 }
 
 void VelodyneScanDecoder::add(const VelodyneScanMessage& message, std::vector<Scan>& done,

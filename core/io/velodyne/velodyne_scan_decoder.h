@@ -3,8 +3,9 @@
 /// Scans with the Velodyne decoder of the pcap path: the model from the first
 /// packet's factory bytes, packets placed on the sensor clock (their
 /// microseconds past the hour, in the hour of the packet's stamp), frames cut
-/// where the azimuth wraps (not at message boundaries, so the scans are those
-/// of a capture of the same packets). See docs/formats.md.
+/// at `input.velodyne_cut_angle_deg` (by default where the azimuth wraps), not
+/// at message boundaries, so the scans are those of a capture of the same
+/// packets. See docs/formats.md.
 #include <cstdint>
 #include <map>
 #include <memory>
@@ -30,6 +31,7 @@ struct VelodyneScanOptions {
   std::string calibration_xml;           ///< VeloView XML; empty = the manual's table
   double min_range = 0.3;                ///< [m]
   double max_range = 120.0;              ///< [m]
+  double cut_angle_deg = 0.0;            ///< frames start at this azimuth [deg]; 0 = the wrap
   bool capture_clock = false;            ///< packet stamps instead of the sensor clock
 };
 VelodyneScanOptions velodyneScanOptions(const InputConfig& input);

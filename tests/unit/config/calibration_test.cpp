@@ -56,11 +56,13 @@ TEST(Calibration, OptionalKeysKeepConfigValues) {
   Config config;
   config.sensor.imu.rate_hz = 200.0;
   config.input.imu_topic = "/my_imu";
+  config.input.velodyne_cut_angle_deg = 90.0;
   applyCalibrationFile(config, dir.write("c.yaml",
                                          "T_imu_lidar:\n  translation: [1, 2, 3]\n"
                                          "  rotation_xyzw: [0, 0, 1, 0]\n"));
   EXPECT_EQ(config.sensor.imu.rate_hz, 200.0);
   EXPECT_EQ(config.input.imu_topic, "/my_imu");
+  EXPECT_EQ(config.input.velodyne_cut_angle_deg, 90.0);
   EXPECT_NEAR(config.sensor.T_imu_lidar.angle(), M_PI, 1e-12);
 }
 
@@ -75,6 +77,7 @@ TEST(Calibration, WriteReadRoundTrip) {
   written.sensor.imu.gyro_noise_density = 3e-3;
   written.sensor.lidar_model = LidarModel::kHdl32e;
   written.input.points_topic = "/points";
+  written.input.velodyne_cut_angle_deg = 180.0;
   const std::string path = dir.file("calibration.yaml");
   writeCalibrationFile(calibrationOf(written), path);
   Config read;
@@ -86,6 +89,7 @@ TEST(Calibration, WriteReadRoundTrip) {
   EXPECT_EQ(read.sensor.lidar_model, LidarModel::kHdl32e);
   EXPECT_EQ(read.input.points_topic, "/points");
   EXPECT_EQ(read.input.imu_topic, "");
+  EXPECT_EQ(read.input.velodyne_cut_angle_deg, 180.0);
   // No temporary files left next to it.
   EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir.path()),
                           std::filesystem::directory_iterator()),
@@ -121,6 +125,10 @@ TEST(Calibration, BadFilesNameTheKeyAtFault) {
        "T_imu_lidar:\n  translation: [0, 0, 0]\n  rotation_xyzw: [0, 0, 0, 1]\nlidar:\n  model: "
        "VLP-32\n",
        "'lidar.model'"},
+      {"cut angle out of range",
+       "T_imu_lidar:\n  translation: [0, 0, 0]\n  rotation_xyzw: [0, 0, 0, 1]\nlidar:\n  "
+       "cut_angle_deg: 360\n",
+       "'lidar.cut_angle_deg' (line 5)"},
       {"offset out of range",
        "T_imu_lidar:\n  translation: [0, 0, 0]\n  rotation_xyzw: [0, 0, 0, "
        "1]\ntime_offset_lidar_to_imu: 5\n",

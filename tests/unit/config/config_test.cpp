@@ -11,9 +11,11 @@
 namespace storey {
 namespace {
 
-const std::string kDefaultConfig = std::string(STOREY_SOURCE_DIR) + "/resources/config/default.yaml";
+const std::string kDefaultConfig =
+    std::string(STOREY_SOURCE_DIR) + "/resources/config/default.yaml";
 
-void collectLeafKeys(const YAML::Node& node, const std::string& prefix, std::set<std::string>& keys) {
+void collectLeafKeys(const YAML::Node& node, const std::string& prefix,
+                     std::set<std::string>& keys) {
   if (!node.IsMap()) {
     keys.insert(prefix);
     return;
@@ -46,7 +48,8 @@ TEST(Config, DefaultFileHasEveryKeyAndTheStructDefaults) {
 
 TEST(Config, PartialFileOverridesOnlyItsKeys) {
   Config config;
-  applyConfigYaml(config, "sensor:\n  imu:\n    rate_hz: 200\ninput:\n  imu_topic: /imu\n", "t.yaml");
+  applyConfigYaml(config, "sensor:\n  imu:\n    rate_hz: 200\ninput:\n  imu_topic: /imu\n",
+                  "t.yaml");
   EXPECT_EQ(config.sensor.imu.rate_hz, 200.0);
   EXPECT_EQ(config.input.imu_topic, "/imu");
   EXPECT_EQ(config.sensor.imu.gravity, 9.81);
@@ -61,9 +64,8 @@ TEST(Config, EmptyFileKeepsDefaults) {
 
 TEST(Config, UnknownKeyIsNamedWithFileLineAndSuggestion) {
   Config config;
-  const std::string message = errorOf([&] {
-    applyConfigYaml(config, "sensor:\n  imu:\n    rate_hx: 200\n", "my.yaml");
-  });
+  const std::string message =
+      errorOf([&] { applyConfigYaml(config, "sensor:\n  imu:\n    rate_hx: 200\n", "my.yaml"); });
   EXPECT_NE(message.find("my.yaml"), std::string::npos) << message;
   EXPECT_NE(message.find("sensor.imu.rate_hx"), std::string::npos) << message;
   EXPECT_NE(message.find("line 3"), std::string::npos) << message;
@@ -83,14 +85,18 @@ TEST(Config, MistypedValueIsNamed) {
   EXPECT_NE(message.find("input.max_range"), std::string::npos) << message;
   EXPECT_NE(message.find("must be a number"), std::string::npos) << message;
   message = errorOf([&] {
-    applyConfigYaml(config, "sensor:\n  T_imu_lidar:\n    translation: [1, 2]\n    rotation_xyzw: [0,0,0,1]\n", "c.yaml");
+    applyConfigYaml(
+        config, "sensor:\n  T_imu_lidar:\n    translation: [1, 2]\n    rotation_xyzw: [0,0,0,1]\n",
+        "c.yaml");
   });
   EXPECT_NE(message.find("sensor.T_imu_lidar.translation"), std::string::npos) << message;
-  message = errorOf([&] { applyConfigYaml(config, "sensor:\n  lidar:\n    model: VLP16\n", "c.yaml"); });
+  message =
+      errorOf([&] { applyConfigYaml(config, "sensor:\n  lidar:\n    model: VLP16\n", "c.yaml"); });
   EXPECT_NE(message.find("sensor.lidar.model"), std::string::npos) << message;
   message = errorOf([&] { applyConfigYaml(config, "sensor: 3\n", "c.yaml"); });
   EXPECT_NE(message.find("'sensor'"), std::string::npos) << message;
-  message = errorOf([&] { applyConfigYaml(config, "sensor:\n  imu:\n    rate_hz: -5\n", "c.yaml"); });
+  message =
+      errorOf([&] { applyConfigYaml(config, "sensor:\n  imu:\n    rate_hz: -5\n", "c.yaml"); });
   EXPECT_NE(message.find("must be positive"), std::string::npos) << message;
 }
 
@@ -107,6 +113,17 @@ TEST(Config, RangeValidation) {
   const std::string message = errorOf(
       [&] { applyConfigYaml(config, "input:\n  min_range: 5\n  max_range: 2\n", "c.yaml"); });
   EXPECT_NE(message.find("input.max_range"), std::string::npos) << message;
+  for (const char* angle : {"360", "-1"}) {
+    Config c;
+    const std::string cut = errorOf([&] {
+      applyConfigYaml(c, std::string("input:\n  velodyne_cut_angle_deg: ") + angle + "\n",
+                      "c.yaml");
+    });
+    EXPECT_NE(cut.find("input.velodyne_cut_angle_deg"), std::string::npos) << cut;
+  }
+  Config ok;
+  applyConfigYaml(ok, "input:\n  velodyne_cut_angle_deg: 180\n", "c.yaml");
+  EXPECT_EQ(ok.input.velodyne_cut_angle_deg, 180.0);
 }
 
 TEST(Config, MissingFileIsNamed) {

@@ -14,6 +14,7 @@
 #include "io/log_format.h"
 #include "io/log_reader.h"
 #include "io/log_summary.h"
+#include "io/velodyne/frame_assembler.h"
 #include "io/velodyne/velodyne_packet.h"
 #include "io/velodyne/velodyne_pcap_reader.h"
 #include "pcap_fixtures.h"
@@ -106,6 +107,67 @@ TEST_F(PcapReader, CleanCaptureIsCutIntoRevolutionsWithFiringTimes) {
   }
   // Azimuth 0 is +x and the head turns clockwise: a quarter turn later points are at -y.
   EXPECT_EQ(dropped(r, kDropNotVelodyne), 0);
+}
+
+TEST(VelodyneFrameCut, StartsWhereTheHeadPassesTheCutAzimuth) {
+  using velodyne::startsFrame;
+  // Cut 0 (the default): exactly where the azimuth decreases (VeloView's rule),
+  // 36000 (sent for 0 by some firmware) not counting as a wrap until it drops.
+  for (const auto& [previous, azimuth] :
+       std::vector<std::pair<int, int>>{{35990, 10}, {36000, 5}, {100, 90}, {20000, 0}}) {
+    EXPECT_TRUE(startsFrame(previous, azimuth, 0)) << previous << " -> " << azimuth;
+  }
+  for (const auto& [previous, azimuth] :
+       std::vector<std::pair<int, int>>{{0, 20}, {35990, 36000}, {17990, 18010}, {50, 50}}) {
+    EXPECT_FALSE(startsFrame(previous, azimuth, 0)) << previous << " -> " << azimuth;
+  }
+  // Cut 180 deg: the block at or just past 18000.
+  EXPECT_TRUE(startsFrame(17990, 18000, 18000));
+  EXPECT_TRUE(startsFrame(17980, 18010, 18000));
+  EXPECT_FALSE(startsFrame(18000, 18020, 18000));
+  EXPECT_FALSE(startsFrame(17960, 17990, 18000));
+  EXPECT_FALSE(startsFrame(35990, 10, 18000)) << "a wrap through 0 is no cut at 180 deg";
+  // A cut just below 360 deg, passed in the step through 0 deg.
+  EXPECT_TRUE(startsFrame(35990, 10, 35995));
+  EXPECT_TRUE(startsFrame(35990, 10, 5));
+  EXPECT_FALSE(startsFrame(35990, 10, 20));
+  EXPECT_EQ(velodyne::cutAzimuth(0.0), 0);
+  EXPECT_EQ(velodyne::cutAzimuth(180.0), 18000);
+  EXPECT_EQ(velodyne::cutAzimuth(90.004), 9000);
+  EXPECT_EQ(velodyne::cutAzimuth(359.999), 0);
+}
+
+TEST_F(PcapReader, CutAngleStartsEveryFrameAtThatAzimuth) {
+  // The capture of the test above (from azimuth 90 deg), cut at 90 deg: full
+  // revolutions from the first packet on, each starting at 90 deg.
+  const auto records = test::vlp16Capture(0.45, 10.0, 1'000'000, 9000);
+  test::writePcap(file("clean.pcap"), records);
+  VelodynePcapOptions options = noImu();
+  options.cut_angle_deg = 90.0;
+  const Read r = readAll(file("clean.pcap"), options);
+  const Read wrap = readAll(file("clean.pcap"));
+  ASSERT_EQ(r.scans.size(), 5u);
+  EXPECT_EQ(r.scans[0].stamp_ns, wrap.scans[0].stamp_ns) << "the capture's first block";
+  std::size_t points = 0, wrap_points = 0;
+  for (const Scan& s : r.scans) points += s.points.size();
+  for (const Scan& s : wrap.scans) wrap_points += s.points.size();
+  EXPECT_EQ(points, wrap_points) << "the same returns, cut elsewhere";
+  for (std::size_t f = 0; f < r.scans.size(); ++f) {
+    const Eigen::Vector3f& p = r.scans[f].points.front().p;
+    // Clockwise from +x: azimuth 90 deg is -y. The first block at or past
+    // 90 deg; a block turns the head by 0.398 deg.
+    const double azimuth = std::atan2(-p.y(), p.x()) * 180.0 / M_PI;
+    EXPECT_GE(azimuth, 90.0 - 0.01) << f;
+    EXPECT_LT(azimuth, 90.0 + 0.4) << f;
+    if (f + 1 < 4) {
+      EXPECT_NEAR(nsToSeconds(r.scans[f + 1].stamp_ns - r.scans[f].stamp_ns), 0.1, 0.0002) << f;
+      EXPECT_NEAR(static_cast<double>(r.scans[f].points.size()), 0.1 / 1327.104e-6 * 384, 400);
+    }
+  }
+  // The configuration key reaches the reader.
+  Config config;
+  config.input.velodyne_cut_angle_deg = 90.0;
+  EXPECT_EQ(velodynePcapOptions(config.input, config.sensor).cut_angle_deg, 90.0);
 }
 
 TEST_F(PcapReader, SensorClockUnwrapsTheHour) {

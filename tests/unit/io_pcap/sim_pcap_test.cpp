@@ -262,7 +262,7 @@ struct CaptureComparison {
   double median_dp = 0.0, p99_dp = 0.0, within_2mm = 0.0, within_3mm = 0.0;
   double first_stamp_difference_ns = 0.0;
   std::int64_t imu_samples = 0, imu_differences = 0;
-  std::vector<std::int64_t> frame_stamps;
+  std::vector<std::int64_t> frame_stamps, scan_stamps;
   std::map<std::string, std::int64_t> pcap_dropped;
   double rotation_hz = 0.0;
   std::int64_t data_packets = 0;
@@ -369,6 +369,7 @@ CaptureComparison compareCaptureWithBag(const std::string& sim_dir) {
                     << " points, the capture has " << in_window << " in its time span";
     }
     ++c.bag_scans;
+    c.scan_stamps.push_back(scan.stamp_ns);
     bag.pop();
   }
   std::int64_t t = 0;
@@ -411,11 +412,15 @@ void expectCaptureIsTheBag(const CaptureComparison& c) {
   EXPECT_EQ(c.pcap_points, c.points) << "the capture has the bag's points, no more";
   EXPECT_LE(c.max_dt_ns, 1000.0) << "per-point times within 1 us";
   EXPECT_NEAR(c.first_stamp_difference_ns, 0.0, 1000.0);
-  // Frames are cut where the azimuth wraps (0 deg, straight ahead); the
-  // simulator's scans start behind the robot (180 deg): the capture has a half
-  // revolution at each end and one frame more than the bag has scans.
-  EXPECT_EQ(c.pcap_frames, c.bag_scans + 1);
+  // Frames are cut at the calibration's lidar.cut_angle_deg, 180 deg, where
+  // the simulator's scans start (behind the robot): one frame per scan, each
+  // starting at a block within one firing sequence of its scan's stamp.
+  EXPECT_EQ(c.pcap_frames, c.bag_scans);
   EXPECT_EQ(static_cast<std::int64_t>(c.frame_stamps.size()), c.pcap_frames);
+  std::int64_t worst_start_ns = 0;
+  for (std::size_t i = 0; i < std::min(c.frame_stamps.size(), c.scan_stamps.size()); ++i)
+    worst_start_ns = std::max(worst_start_ns, std::abs(c.frame_stamps[i] - c.scan_stamps[i]));
+  EXPECT_LE(worst_start_ns, 55'296 + 1'000);
   EXPECT_NEAR(c.rotation_hz, 10.0, 0.01);
   EXPECT_EQ(c.imu_differences, 0) << "IMU CSV = the bag's IMU (" << c.imu_samples << " samples)";
   for (const auto& [reason, count] : c.pcap_dropped) {
@@ -520,6 +525,8 @@ TEST_F(SimPcap, CaptureClockGivesTheSensorTimes) {
     ++frames;
   }
   EXPECT_FALSE(b.fill(1));
+  // The default cut (0 deg, where the azimuth wraps; the simulator's scans
+  // start at 180 deg): a half revolution at each end, one frame more than scans.
   EXPECT_EQ(frames, static_cast<std::size_t>(result_.scans + 1));
   EXPECT_LE(worst_ns, 1000.0);
 }
