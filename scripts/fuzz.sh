@@ -82,8 +82,9 @@ for t in "${targets[@]}"; do
     "${cov:-?}" "${ft:-?}" "$files" "$result"
   if [ "$status" != 0 ]; then
     echo "---- $t: libFuzzer's report ($log) ----"
-    grep -E -A40 '^==[0-9]+==ERROR|runtime error|^==[0-9]+== ERROR|deadly signal|ALARM|out-of-memory|uncaught|terminate called' \
-      "$log" | head -60 || tail -40 "$log"
+    # From the first report line, 30 lines (the error and the top of its stack).
+    awk '/ERROR|runtime error|terminate called|deadly signal|out-of-memory|timeout/ {p = 1}
+         p && n++ < 30 {print}' "$log"
     artifact=$(sed -n 's/.*Test unit written to \(.*\)$/\1/p' "$log" | tail -1)
     if [ -n "$artifact" ]; then
       echo "reproducer: $artifact"
