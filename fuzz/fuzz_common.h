@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <string>
 
 #include "common/error.h"
@@ -30,8 +31,13 @@ inline std::string writeInputFile(const std::uint8_t* data, std::size_t size,
                                 : shm       ? "/dev/shm"
                                             : "/tmp") +
                     "/storey-fuzz-" + std::to_string(static_cast<long>(getpid()));
-    std::string command = "mkdir -p '" + d + "'";
-    if (std::system(command.c_str()) != 0) std::abort();
+    std::filesystem::create_directories(d);
+    static std::string to_remove;  // removed when the process exits normally
+    to_remove = d;
+    std::atexit([] {
+      std::error_code ec;
+      std::filesystem::remove_all(to_remove, ec);
+    });
     return d;
   }();
   const std::string path = dir + "/" + name;
