@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Storey set-up: installs every Debian package the project needs (build, tests,
 # off-screen rendering, CloudCompare plugin, the Slurm daemons the `storey batch`
-# test starts as a private cluster). Idempotent: when everything is
+# test starts as a private cluster, clang and libFuzzer for fuzz/). Idempotent: when everything is
 # already installed it only checks with dpkg-query and returns in about a second.
 # Must run as root (or with sudo available) on Debian bookworm.
 set -euo pipefail
@@ -15,6 +15,7 @@ PACKAGES=(
   libsqlite3-dev libzstd-dev liblz4-dev zlib1g-dev
   cloudcompare libqt5opengl5-dev dpkg-dev
   slurmctld slurmd slurm-client munge
+  clang libclang-rt-dev llvm
 )
 
 as_root() {

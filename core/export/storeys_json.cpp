@@ -61,6 +61,8 @@ std::vector<StoreyInfo> parseStoreysJson(const std::string& json_text, const std
     root = Json::parse(json_text);
   } catch (const Json::parse_error& e) {
     throw Error(source + ": not valid JSON (byte " + std::to_string(e.byte) + ")");
+  } catch (const Json::exception& e) {  // e.g. out_of_range: a number beyond a double (1e400)
+    throw Error(source + ": not valid JSON (" + e.what() + ")");
   }
   const Json* list = &root;
   if (root.is_object()) {

@@ -57,12 +57,15 @@ bool parseSecondsToNs(const std::string& text, std::int64_t& ns) {
   std::size_t i = 0;
   bool negative = false;
   if (i < text.size() && (text[i] == '-' || text[i] == '+')) negative = text[i++] == '-';
+  // whole * 1e9 + fraction must fit in int64 (about 292 years of nanoseconds).
+  constexpr std::int64_t kMaxWholeSeconds = 9'223'372'035;
   std::int64_t whole = 0, fraction = 0;
   int digits = 0, fraction_digits = 0;
   for (; i < text.size() && std::isdigit(static_cast<unsigned char>(text[i])); ++i, ++digits) {
-    if (whole > 9'000'000'000LL) return false;
+    if (whole > kMaxWholeSeconds) return false;
     whole = whole * 10 + (text[i] - '0');
   }
+  if (whole > kMaxWholeSeconds) return false;
   if (i < text.size() && text[i] == '.') {
     for (++i; i < text.size() && std::isdigit(static_cast<unsigned char>(text[i])); ++i) {
       if (fraction_digits < 9) {
@@ -177,7 +180,10 @@ bool ImuCsvReader::parseLine(const std::string& line, ImuSample& sample, std::st
       return false;
     }
   }
-  sample.stamp_ns = stamp + offset_ns_;
+  if (__builtin_add_overflow(stamp, offset_ns_, &sample.stamp_ns)) {
+    why = "time '" + t + "' plus the offset is beyond the nanosecond range";
+    return false;
+  }
   sample.gyro = Eigen::Vector3d(v[0], v[1], v[2]) * gyro_scale_;
   sample.accel = Eigen::Vector3d(v[3], v[4], v[5]) * accel_scale_;
   return true;

@@ -393,13 +393,13 @@ class McapStorage final : public MessageStorage {
                   " uncompressed bytes (more than 4 GiB: damaged?)");
     }
     ++compressions_[compression.empty() ? "none" : compression];
+    if (compression.empty() && n != uncompressed_size) {  // checked before allocating
+      throw Error(where + ": uncompressed chunk of " + std::to_string(n) +
+                  " bytes but uncompressed_size " + std::to_string(uncompressed_size));
+    }
     chunk_.resize(static_cast<std::size_t>(uncompressed_size));
     if (compression.empty()) {
-      if (n != uncompressed_size) {
-        throw Error(where + ": uncompressed chunk of " + std::to_string(n) +
-                    " bytes but uncompressed_size " + std::to_string(uncompressed_size));
-      }
-      std::memcpy(chunk_.data(), p, n);
+      if (n > 0) std::memcpy(chunk_.data(), p, n);  // (an empty chunk_ has no data())
     } else if (compression == "zstd") {
       const std::size_t got = ZSTD_decompress(chunk_.data(), chunk_.size(), p, n);
       if (ZSTD_isError(got) || got != uncompressed_size) {

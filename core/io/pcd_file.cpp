@@ -3,12 +3,43 @@
 #include <cmath>
 #include <cstring>
 #include <fstream>
+#include <limits>
 #include <sstream>
 
 #include "common/error.h"
 
 namespace storey {
 namespace {
+
+template <class T>
+bool inRangeOf(double v) {  // false for NaN
+  return v >= static_cast<double>(std::numeric_limits<T>::lowest()) &&
+         v <= static_cast<double>(std::numeric_limits<T>::max());
+}
+
+/// Whether an ascii value converts to a field of `datatype` without overflow
+/// (a conversion out of range is undefined): integers in their range, float32
+/// within its range or not finite (NaN, inf), float64 and 64-bit integers any.
+bool fitsDatatype(double v, std::uint8_t datatype) {
+  switch (datatype) {
+    case 1:
+      return inRangeOf<std::int8_t>(v);
+    case 2:
+      return inRangeOf<std::uint8_t>(v);
+    case 3:
+      return inRangeOf<std::int16_t>(v);
+    case 4:
+      return inRangeOf<std::uint16_t>(v);
+    case 5:
+      return inRangeOf<std::int32_t>(v);
+    case 6:
+      return inRangeOf<std::uint32_t>(v);
+    case 7:
+      return !std::isfinite(v) || inRangeOf<float>(v);
+    default:
+      return true;
+  }
+}
 
 std::uint8_t datatypeOf(char type, int size) {
   switch (type) {
@@ -252,6 +283,11 @@ PcdCloud readPcd(const std::string& path) {
                         std::to_string(w.size()) + " values, expected more");
           }
           const double v = std::strtod(w[k].c_str(), nullptr);
+          if (!fitsDatatype(v, f.datatype)) {
+            throw Error(path + ": PCD ascii data line " + std::to_string(line_number) +
+                        ": value '" + w[k] + "' of field '" + f.name + "' does not fit its type " +
+                        pointFieldTypeName(f.datatype));
+          }
           std::uint8_t* at = point + f.offset + c * elementSize(f);
           switch (f.datatype) {
             case 1: { auto x = static_cast<std::int8_t>(v); std::memcpy(at, &x, 1); break; }

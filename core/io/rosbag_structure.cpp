@@ -38,6 +38,7 @@ class ByteSource {
 
   /// Copies `n` bytes at `pos`; the caller has checked that they are in the file.
   void read(std::uint64_t pos, void* out, std::size_t n) {
+    if (n == 0) return;  // (an empty cache has no data() to copy from)
     if (pos >= cache_pos_ && pos + n <= cache_pos_ + cache_.size()) {
       std::memcpy(out, cache_.data() + (pos - cache_pos_), n);
       return;

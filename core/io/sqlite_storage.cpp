@@ -7,6 +7,7 @@
 #include <cstring>
 #include <filesystem>
 #include <map>
+#include <memory>
 
 #include "common/error.h"
 
@@ -33,7 +34,17 @@ class Db3File {
   explicit Db3File(std::string path) : path_(std::move(path)) {
     const int rc = sqlite3_open_v2(uriPath(path_).c_str(), &db_,
                                    SQLITE_OPEN_READONLY | SQLITE_OPEN_URI, nullptr);
-    if (rc != SQLITE_OK) fail("cannot open the sqlite3 database");
+    if (rc != SQLITE_OK) {
+      // sqlite3 allocates the handle even when opening fails, and the
+      // destructor does not run for a constructor that throws.
+      try {
+        fail("cannot open the sqlite3 database");
+      } catch (...) {
+        sqlite3_close(db_);
+        db_ = nullptr;
+        throw;
+      }
+    }
   }
   ~Db3File() {
     if (stmt_ != nullptr) sqlite3_finalize(stmt_);
@@ -66,10 +77,12 @@ class Db3File {
   /// Runs `sql`, calling `row` for each result row.
   template <typename F>
   void query(const std::string& sql, F&& row) {
-    sqlite3_stmt* stmt = prepare(sql);
+    // Finalized also when `row` throws (else the statement and, since
+    // sqlite3_close refuses a handle with live statements, the database leak).
+    const std::unique_ptr<sqlite3_stmt, int (*)(sqlite3_stmt*)> stmt(prepare(sql),
+                                                                     &sqlite3_finalize);
     int rc;
-    while ((rc = sqlite3_step(stmt)) == SQLITE_ROW) row(stmt);
-    sqlite3_finalize(stmt);
+    while ((rc = sqlite3_step(stmt.get())) == SQLITE_ROW) row(stmt.get());
     if (rc != SQLITE_DONE) fail("cannot read the rosbag2 tables");
   }
 

@@ -65,7 +65,7 @@ void RayCaster::cast16(const Eigen::Vector3f origins[16], const Eigen::Vector3f 
   rtcInitIntersectContext(&context);
   context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;  // one firing: one origin, close directions
   RTCRayHit16 rh;
-  int valid[16];
+  alignas(64) int valid[16];  // Embree reads the mask with 64-byte aligned loads
   for (int i = 0; i < 16; ++i) {
     valid[i] = -1;
     rh.ray.org_x[i] = origins[i].x();

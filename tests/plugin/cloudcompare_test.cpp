@@ -58,7 +58,8 @@ class CloudCompareHome {
   }
   /// `env` with the private HOME, XDG_DATA_HOME and XDG_CONFIG_HOME.
   std::string env(const std::string& env_options = "") const {
-    return "env " + env_options + " HOME=" + quoted(dir_.path().string()) +
+    return "env " + env_options + " " STOREY_CLOUDCOMPARE_ENV " HOME=" +
+           quoted(dir_.path().string()) +
            " XDG_DATA_HOME=" + quoted((dir_.path() / "xdg").string()) +
            " XDG_CONFIG_HOME=" + quoted((dir_.path() / "config").string());
   }

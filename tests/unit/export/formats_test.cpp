@@ -154,6 +154,14 @@ TEST(StoreysJson, TheOneReaderReadsBackWhatTheWriterWrote) {
   }
   EXPECT_EQ(storeysJson(read, 0.02), storeysJson(written, 0.02));
   EXPECT_THROW(parseStoreysJson("{\"storeys\": [{\"index\": 1}]}", "s.json"), Error);
+  // Found by fuzzing (tests/data/fuzz/storeys_json): a number beyond a double
+  // escaped as nlohmann's out_of_range instead of a storey::Error.
+  try {
+    parseStoreysJson("[{\"index\": 0, \"floor_elevation\": 1e400}]", "s.json");
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("s.json: not valid JSON"), std::string::npos) << e.what();
+  }
 }
 
 TEST(ReportMarkdown, TablesFromTheRunReport) {

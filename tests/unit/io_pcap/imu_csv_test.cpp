@@ -36,6 +36,20 @@ TEST(ImuCsv, SecondsAreReadExactlyToTheNanosecond) {
   EXPECT_FALSE(parseSecondsToNs("1e9", ns));
   EXPECT_FALSE(parseSecondsToNs("abc", ns));
   EXPECT_FALSE(parseSecondsToNs("", ns));
+  // Found by fuzzing (tests/data/fuzz/imu_csv): 17e9 s passed the old bound
+  // and overflowed int64 nanoseconds (undefined behaviour). The range ends
+  // about 292 years after 1970.
+  EXPECT_FALSE(parseSecondsToNs("17000000000.0075", ns));
+  EXPECT_FALSE(parseSecondsToNs("9223372036.0", ns));
+  ASSERT_TRUE(parseSecondsToNs("9223372035.999999999", ns));
+  EXPECT_EQ(ns, 9'223'372'035'999'999'999LL);
+  // With the offset beyond the range, the line is bad, not wrapped around.
+  const auto path = writeFile("edge.csv", "9223372035.9,0,0,0,0,0,9.8\n1,0,0,0,0,0,9.8\n");
+  ImuCsvReader reader(path, 1'000'000'000);
+  ImuSample sample;
+  ASSERT_TRUE(reader.next(sample));
+  EXPECT_EQ(sample.stamp_ns, 2'000'000'000LL);
+  EXPECT_EQ(reader.badLines(), 1);
 }
 
 TEST(ImuCsv, DefaultColumnsWithoutHeader) {

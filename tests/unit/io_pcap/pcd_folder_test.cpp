@@ -240,6 +240,27 @@ TEST_F(PcdFolder, ErrorsNameThePlace) {
   EXPECT_THROW(detectLogFormat(path("000001.pcd")), Error);
 }
 
+TEST_F(PcdFolder, AsciiValueBeyondItsFieldTypeIsAnError) {
+  // Found by fuzzing (tests/data/fuzz/pcd): -2 in a U 2 field was converted
+  // out of range (undefined behaviour); it is an error naming line and field.
+  std::ofstream(path("a.pcd")) << "VERSION 0.7\nFIELDS x y z ring\nSIZE 4 4 4 2\nTYPE F F F U\n"
+                                  "COUNT 1 1 1 1\nWIDTH 2\nHEIGHT 1\nPOINTS 2\nDATA ascii\n"
+                                  "1 2 3 0\n4 5 6 -2\n";
+  try {
+    readPcd(path("a.pcd"));
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("a.pcd: PCD ascii data line 2: value '-2' of field 'ring'"),
+              std::string::npos)
+        << what;
+  }
+  std::ofstream(path("b.pcd")) << "VERSION 0.7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\n"
+                                  "COUNT 1 1 1\nWIDTH 1\nHEIGHT 1\nPOINTS 1\nDATA ascii\n"
+                                  "1e300 nan inf\n";
+  EXPECT_THROW(readPcd(path("b.pcd")), Error);  // beyond float; NaN and inf stay allowed
+}
+
 TEST_F(PcdFolder, FileNameStampUnits) {
   std::int64_t ns = 0;
   ASSERT_TRUE(stampFromFileName("scan_1673400471.25.pcd", ns));
