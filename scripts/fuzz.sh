@@ -2,11 +2,13 @@
 # Builds the fuzz preset (clang, -fsanitize=fuzzer,address,undefined) and runs
 # libFuzzer targets, one after the other (docs/testing.md):
 #
-#   scripts/fuzz.sh [TARGET...] [--seconds N] [--no-build] [--list]
+#   scripts/fuzz.sh [TARGET...] [--seconds N] [--seed S] [--no-build] [--list]
 #
 # TARGET: names of fuzz/targets/<name>.cpp (default: all); N: seconds per target
-# (default 30). Each target starts from its working corpus (build/fuzz/corpus/<name>,
-# kept between runs) and the seeds written at build time (build/fuzz/fuzz/seeds/<name>),
+# (default 30); S: libFuzzer's random seed (default: a new one each run; CI uses 1,
+# so that its smoke is the same search every time). Each target starts from its
+# working corpus (build/fuzz/corpus/<name>, kept between runs) and the seeds
+# written at build time (build/fuzz/fuzz/seeds/<name>),
 # with fuzz/dict/<name>.dict when there is one. Prints one line per target:
 # executions, executions/s, coverage (edges, features), corpus size. A finding (crash,
 # sanitizer report, uncaught exception, out of memory, timeout) prints its
@@ -16,6 +18,7 @@ cd "$(dirname "$0")/.."
 root="$PWD"
 
 seconds=30
+seed=0
 build=1
 targets=()
 all_targets=(rosbag pointcloud2 ros_messages pcap velodyne_packet pcd imu_csv config_yaml
@@ -24,9 +27,10 @@ while [ $# -gt 0 ]; do
   case "$1" in
     --seconds) seconds="$2"; shift 2 ;;
     --seconds=*) seconds="${1#*=}"; shift ;;
+    --seed) seed="$2"; shift 2 ;;
     --no-build) build=0; shift ;;
     --list) printf '%s\n' "${all_targets[@]}"; exit 0 ;;
-    -h|--help) sed -n '2,13p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -h|--help) sed -n '2,16p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     -*) echo "fuzz.sh: unknown option $1" >&2; exit 2 ;;
     *) targets+=("$1"); shift ;;
   esac
@@ -63,7 +67,7 @@ for t in "${targets[@]}"; do
   [ -f "fuzz/dict/$t.dict" ] && dict=("-dict=fuzz/dict/$t.dict")
   status=0
   # -timeout: one input taking 10 s is a hang; -rss_limit_mb: 2 GiB (also the malloc limit).
-  "$bin/fuzz_$t" "$corpus" "$seeds" "${dict[@]}" -max_total_time="$seconds" -timeout=10 \
+  "$bin/fuzz_$t" "$corpus" "$seeds" "${dict[@]}" -max_total_time="$seconds" -seed="$seed" -timeout=10 \
     -rss_limit_mb=2048 -print_final_stats=1 -artifact_prefix="fuzz/crashes/$t-" \
     >"$log" 2>&1 || status=$?
   execs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -1)

@@ -123,6 +123,10 @@ Header readHeader(std::istream& in, const std::string& path) {
       if (!(words >> element.name >> count) || count < 0)
         throw fail("expected 'element NAME COUNT'");
       element.count = static_cast<std::size_t>(count);
+      // The body is read by element name: a second 'vertex' with other
+      // properties would be indexed with the first one's (found by fuzzing).
+      if (header.find(element.name) != nullptr)
+        throw fail("element '" + element.name + "' declared twice");
       header.elements.push_back(element);
     } else if (keyword == "property") {
       if (header.elements.empty()) throw fail("property before any element");

@@ -1,7 +1,9 @@
 #include "io/pcd_file.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <limits>
 #include <sstream>
@@ -97,6 +99,7 @@ PcdHeader parseHeader(std::istream& in, const std::string& path, std::vector<int
       } else if (key == "HEIGHT") {
         h.height = static_cast<std::uint32_t>(std::stoul(w.at(1)));
       } else if (key == "POINTS") {
+        if (w.at(1)[0] == '-') fail("a negative number of points");  // stoull would wrap it
         h.points = std::stoull(w.at(1));
         have_points = true;
       } else if (key == "VIEWPOINT") {
@@ -230,7 +233,26 @@ PcdCloud readPcd(const std::string& path) {
   PcdCloud cloud;
   cloud.header = parseHeader(in, path, sizes, types, counts);
   PcdHeader& h = cloud.header;
-  const std::size_t body = static_cast<std::size_t>(h.points) * h.point_step;
+  // Before allocating: the header's points must fit in what the file holds after
+  // the header (binary: point_step bytes a point; ascii: at least one character a
+  // point; binary_compressed: LZF expands at most about 100 times, 256 allowed),
+  // so a damaged header asks for no absurd memory (nor overflows the product).
+  std::error_code ec;
+  const std::uint64_t file_size = std::filesystem::file_size(path, ec);
+  const std::uint64_t left = !ec && file_size > h.data_offset ? file_size - h.data_offset : 0;
+  const std::uint64_t factor = h.data == "binary"  ? 1
+                               : h.data == "ascii" ? std::max<std::uint64_t>(h.point_step, 1)
+                                                   : 256;
+  const std::uint64_t room =
+      left > std::numeric_limits<std::uint64_t>::max() / factor
+          ? std::numeric_limits<std::uint64_t>::max()
+          : left * factor;
+  if (h.point_step > 0 && h.points > room / h.point_step) {
+    throw Error(path + ": PCD body truncated at byte " + std::to_string(h.data_offset + left) +
+                ": " + std::to_string(h.points) + " points of " + std::to_string(h.point_step) +
+                " bytes cannot be in the " + std::to_string(left) + " bytes after the header");
+  }
+  const std::size_t body = static_cast<std::size_t>(h.points * h.point_step);  // <= room
   cloud.bytes.assign(body, 0);
   if (h.data == "binary") {
     in.read(reinterpret_cast<char*>(cloud.bytes.data()), static_cast<std::streamsize>(body));

@@ -168,5 +168,21 @@ TEST_F(EvalPly, ForeignOrBrokenFilesAreClearErrors) {
   expectError(path("index.ply"), "face 0 refers to vertex 3 of 3", true);
 }
 
+TEST_F(EvalPly, AnElementDeclaredTwiceIsAnError) {
+  // Found by the fuzz smoke of CI (tests/data/fuzz/ply): the second 'vertex'
+  // (one property) was read with the first one's x y z indexes, past the end
+  // of its values (heap overflow). The header is refused, naming the line.
+  writeText(path("twice.ply"),
+            "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\n"
+            "property float z\nelement vertex 1\nproperty float x\nend_header\n1 2 3\n4\n");
+  try {
+    readPlyPoints(path("twice.ply"));
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("element 'vertex' declared twice"), std::string::npos)
+        << e.what();
+  }
+}
+
 }  // namespace
 }  // namespace storey::eval

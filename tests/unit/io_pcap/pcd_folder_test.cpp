@@ -259,6 +259,29 @@ TEST_F(PcdFolder, AsciiValueBeyondItsFieldTypeIsAnError) {
                                   "COUNT 1 1 1\nWIDTH 1\nHEIGHT 1\nPOINTS 1\nDATA ascii\n"
                                   "1e300 nan inf\n";
   EXPECT_THROW(readPcd(path("b.pcd")), Error);  // beyond float; NaN and inf stay allowed
+  // Found by the fuzz smoke of CI (tests/data/fuzz/pcd): POINTS -2 wrapped to
+  // 2^64 - 2 and the body's allocation threw std::length_error; a header asking
+  // for more points than the file can hold is an error before allocating.
+  std::ofstream(path("c.pcd")) << "VERSION 0.7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\n"
+                                  "COUNT 1 1 1\nWIDTH 1\nHEIGHT 1\nPOINTS -2\nDATA binary\n";
+  try {
+    readPcd(path("c.pcd"));
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("negative number of points"), std::string::npos)
+        << e.what();
+  }
+  std::ofstream(path("d.pcd")) << "VERSION 0.7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\n"
+                                  "COUNT 1 1 1\nWIDTH 1\nHEIGHT 1\nPOINTS 4000000000000\n"
+                                  "DATA binary\n0123456789ab";
+  try {
+    readPcd(path("d.pcd"));
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("cannot be in the 12 bytes after the header"),
+              std::string::npos)
+        << e.what();
+  }
 }
 
 TEST_F(PcdFolder, FileNameStampUnits) {
