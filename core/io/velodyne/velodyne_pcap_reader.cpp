@@ -149,15 +149,12 @@ struct VelodynePcapReader::Impl {
 
   void open() {
     probe();
-    velodyne::Calibration calibration =
-        options_.calibration_xml.empty()
-            ? velodyne::defaultCalibration(probe_.model)
-            : velodyne::readVeloViewCalibration(options_.calibration_xml, probe_.model);
     velodyne::DecodeOptions decode;
     decode.azimuth = options_.azimuth;
     decode.min_range = options_.min_range;
     decode.max_range = options_.max_range;
-    decoder_ = std::make_unique<velodyne::PacketDecoder>(std::move(calibration), decode);
+    decoder_ = std::make_unique<velodyne::PacketDecoder>(
+        velodyne::calibrationFor(probe_.model, options_.calibration_xml), decode);
     frames_ = std::make_unique<velodyne::FrameAssembler>(
         *decoder_, velodyne::kMaxFrameGapS, velodyne::cutAzimuth(options_.cut_angle_deg));
     if (!options_.imu_csv.empty()) {

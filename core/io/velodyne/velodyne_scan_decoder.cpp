@@ -52,14 +52,11 @@ void VelodyneScanDecoder::start(const VelodyneScanMessage& message) {
   }
   detection_ = velodyne::detectModel(product_, return_mode_, period,
                                      options_.model ? &*options_.model : nullptr, source_);
-  velodyne::Calibration calibration =
-      options_.calibration_xml.empty()
-          ? velodyne::defaultCalibration(detection_.model)
-          : velodyne::readVeloViewCalibration(options_.calibration_xml, detection_.model);
   velodyne::DecodeOptions decode;
   decode.min_range = options_.min_range;
   decode.max_range = options_.max_range;
-  decoder_ = std::make_unique<velodyne::PacketDecoder>(std::move(calibration), decode);
+  decoder_ = std::make_unique<velodyne::PacketDecoder>(
+      velodyne::calibrationFor(detection_.model, options_.calibration_xml), decode);
   frames_ = std::make_unique<velodyne::FrameAssembler>(
       *decoder_, velodyne::kMaxFrameGapS, velodyne::cutAzimuth(options_.cut_angle_deg));
 }

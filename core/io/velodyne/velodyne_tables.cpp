@@ -161,4 +161,9 @@ Calibration readVeloViewCalibration(const std::string& path, Model model) {
   return c;
 }
 
+Calibration calibrationFor(Model model, const std::string& calibration_xml) {
+  return calibration_xml.empty() ? defaultCalibration(model)
+                                 : readVeloViewCalibration(calibration_xml, model);
+}
+
 }  // namespace storey::velodyne

@@ -86,6 +86,10 @@ Calibration defaultCalibration(Model model);
 /// Throws storey::Error naming the file on a file that cannot be read or lacks them.
 Calibration readVeloViewCalibration(const std::string& path, Model model);
 
+/// The calibration a reader decodes `model` with: the VeloView XML at
+/// `calibration_xml`, or the manual's table when it is empty.
+Calibration calibrationFor(Model model, const std::string& calibration_xml);
+
 /// Sets each laser's ring from the ranks of the elevations (0 = lowest).
 void assignRings(Calibration& calibration);
 
