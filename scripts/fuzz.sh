@@ -45,7 +45,8 @@ done
 
 if [ "$build" = 1 ]; then
   scripts/setup.sh >/dev/null
-  export CCACHE_BASEDIR="$root"
+  # Shared with other clones: relative paths, and the folder not hashed for -g.
+  export CCACHE_BASEDIR="$root" CCACHE_NOHASHDIR=1
   cmake --preset fuzz >/dev/null
   cmake --build --preset fuzz -j 2
 fi
