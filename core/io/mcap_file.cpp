@@ -393,6 +393,18 @@ class McapStorage final : public MessageStorage {
                   " uncompressed bytes (more than 4 GiB: damaged?)");
     }
     ++compressions_[compression.empty() ? "none" : compression];
+    // Neither codec can expand a few bytes into gigabytes: a zstd block of 4 bytes (an RLE
+    // block) gives at most 128 KiB, an lz4 sequence at most about 255 bytes per input byte.
+    // A claim beyond that is damage, refused before allocating.
+    const std::uint64_t most = compression == "zstd"  ? (n / 4 + 1) * (128ULL << 10)
+                               : compression == "lz4" ? n * 256ULL + (64ULL << 10)
+                                                      : uncompressed_size;
+    if (uncompressed_size > most) {
+      throw Error(where + ": " + compression + " chunk of " + std::to_string(n) +
+                  " bytes claims " + std::to_string(uncompressed_size) +
+                  " uncompressed bytes, more than " + compression +
+                  " can expand to: the file is damaged");
+    }
     if (compression.empty() && n != uncompressed_size) {  // checked before allocating
       throw Error(where + ": uncompressed chunk of " + std::to_string(n) +
                   " bytes but uncompressed_size " + std::to_string(uncompressed_size));

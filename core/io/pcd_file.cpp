@@ -94,10 +94,11 @@ PcdHeader parseHeader(std::istream& in, const std::string& path, std::vector<int
       } else if (key == "COUNT") {
         counts.clear();
         for (std::size_t i = 1; i < w.size(); ++i) counts.push_back(std::stoi(w[i]));
-      } else if (key == "WIDTH") {
-        h.width = static_cast<std::uint32_t>(std::stoul(w.at(1)));
-      } else if (key == "HEIGHT") {
-        h.height = static_cast<std::uint32_t>(std::stoul(w.at(1)));
+      } else if (key == "WIDTH" || key == "HEIGHT") {
+        // stoull would wrap a negative count; a count beyond 32 bits is no PCD's.
+        const std::uint64_t v = w.at(1)[0] == '-' ? ~0ULL : std::stoull(w.at(1));
+        if (v > 0xFFFFFFFFULL) fail(key + " must be a count of points (0 to 2^32-1)");
+        (key == "WIDTH" ? h.width : h.height) = static_cast<std::uint32_t>(v);
       } else if (key == "POINTS") {
         if (w.at(1)[0] == '-') fail("a negative number of points");  // stoull would wrap it
         h.points = std::stoull(w.at(1));

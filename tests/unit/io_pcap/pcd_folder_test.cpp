@@ -282,6 +282,19 @@ TEST_F(PcdFolder, AsciiValueBeyondItsFieldTypeIsAnError) {
               std::string::npos)
         << e.what();
   }
+  // WIDTH -1 wrapped to 2^32 - 1 through stoul; a negative or > 32-bit count is an error.
+  for (const char* width : {"-1", "4294967296"}) {
+    std::ofstream(path("e.pcd")) << "VERSION 0.7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\n"
+                                    "COUNT 1 1 1\nWIDTH "
+                                 << width << "\nHEIGHT 1\nPOINTS 1\nDATA binary\n0123456789ab";
+    try {
+      readPcd(path("e.pcd"));
+      FAIL() << "no error for WIDTH " << width;
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find("WIDTH must be a count of points"), std::string::npos)
+          << e.what();
+    }
+  }
 }
 
 TEST_F(PcdFolder, FileNameStampUnits) {

@@ -155,6 +155,18 @@ TEST(McapContainer, DamagedFilesAreOneLineErrors) {
 
   // Nothing but the magic and a header: an empty log.
   std::vector<char> empty(hand.begin(), hand.begin() + kMcapMagicSize + 9 + 8);
+
+  // A zstd chunk of 12 bytes claiming 3 GiB: refused before allocating the 3 GiB.
+  std::vector<char> huge(empty);
+  std::vector<std::uint8_t> chunk(16, 0);                  // start and end time
+  for (int k = 0; k < 8; ++k) chunk.push_back(static_cast<std::uint8_t>((3ULL << 30) >> (8 * k)));
+  chunk.insert(chunk.end(), {0, 0, 0, 0, 4, 0, 0, 0, 'z', 's', 't', 'd', 12, 0, 0, 0, 0, 0, 0, 0});
+  chunk.insert(chunk.end(), {0x28, 0xb5, 0x2f, 0xfd, 0, 0, 0, 0, 0, 0, 0, 0});
+  hand.swap(huge);
+  record(0x06, chunk);
+  hand.swap(huge);
+  writeAll(dir.file("huge.mcap"), huge);
+  expectOneLineError(dir.file("huge.mcap"), "more than zstd can expand to", dir);
   writeAll(dir.file("empty.mcap"), empty);
   const auto r = test::runStorey("run " + test::shellQuoted(dir.file("empty.mcap")) + " -o " +
                                      test::shellQuoted(dir.file("out")) + " --no-render",
