@@ -1,5 +1,6 @@
 #include "export/planes_json.h"
 
+#include <cmath>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -120,7 +121,12 @@ PlaneMap parsePlanesJson(const std::string& json_text, const std::string& source
             obs.hull_keyframe.push_back(
                 vec3(o["hull"][h], ow + ".hull[" + std::to_string(h) + "]"));
         }
-        if (o.contains("points")) obs.points = static_cast<long>(number(o, "points", ow));
+        if (o.contains("points")) {
+          const double points = number(o, "points", ow);
+          if (!(points >= 0.0 && points <= 9007199254740992.0 && points == std::floor(points)))
+            throw Error(ow + ": 'points' must be a whole number >= 0");
+          obs.points = static_cast<long>(points);
+        }
         if (o.contains("fit_rms_m")) obs.fit_rms = number(o, "fit_rms_m", ow);
         if (o.contains("residual_chi2")) obs.residual_chi2 = number(o, "residual_chi2", ow);
         if (o.contains("outlier")) {

@@ -1,5 +1,6 @@
 #include "export/storeys_json.h"
 
+#include <cmath>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -20,6 +21,14 @@ Json optionalNumber(const std::optional<double>& v) {
 std::optional<double> numberOrNone(const Json& j, const char* key) {
   if (!j.contains(key) || !j[key].is_number()) return std::nullopt;
   return j[key].get<double>();
+}
+
+/// A count (points): absent is 0; negative, fractional or beyond 2^53 is an error.
+std::size_t countOrZero(const Json& j, const char* key, const std::string& where) {
+  const double v = numberOrNone(j, key).value_or(0.0);
+  if (!(v >= 0.0 && v <= 9007199254740992.0 && v == std::floor(v)))
+    throw Error(where + ": '" + key + "' must be a whole number >= 0");
+  return static_cast<std::size_t>(v);
 }
 
 }  // namespace
@@ -86,8 +95,8 @@ std::vector<StoreyInfo> parseStoreysJson(const std::string& json_text, const std
     s.height = numberOrNone(entry, "height");
     s.footprint_area = numberOrNone(entry, "area").value_or(0.0);
     s.floor_area_detected = numberOrNone(entry, "floor_area_detected").value_or(0.0);
-    s.points = static_cast<std::size_t>(numberOrNone(entry, "points").value_or(0.0));
-    s.stair_points = static_cast<std::size_t>(numberOrNone(entry, "stair_points").value_or(0.0));
+    s.points = countOrZero(entry, "points", where);
+    s.stair_points = countOrZero(entry, "stair_points", where);
     if (entry.contains("footprint") && entry["footprint"].is_array()) {
       for (const Json& p : entry["footprint"])
         if (p.is_array() && p.size() >= 2 && p[0].is_number() && p[1].is_number())

@@ -272,6 +272,11 @@ PcdCloud readPcd(const std::string& path) {
                   " does not match " + std::to_string(h.points) + " points of " +
                   std::to_string(h.point_step) + " bytes");
     }
+    if (sizes_le[0] > (left >= 8 ? left - 8 : 0)) {  // checked before allocating
+      throw Error(path + ": PCD binary_compressed body truncated: " + std::to_string(sizes_le[0]) +
+                  " compressed bytes announced, " + std::to_string(left >= 8 ? left - 8 : 0) +
+                  " in the file");
+    }
     std::vector<std::uint8_t> packed(sizes_le[0]);
     in.read(reinterpret_cast<char*>(packed.data()), static_cast<std::streamsize>(packed.size()));
     if (static_cast<std::size_t>(in.gcount()) != packed.size()) {
