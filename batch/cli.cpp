@@ -92,6 +92,9 @@ int main(int argc, char** argv) {
                       "IMU grade instead of the spec's: tactical or consumer, optionally @HZ "
                       "(consumer@100)");
   sim_cmd->add_option("--motion", simulate.motion, "legged or handheld instead of the spec's");
+  sim_cmd->add_option("--fault", simulate.faults,
+                      "inject a fault into the logs (repeatable): imu_spike@T (one full-range "
+                      "sample), imu_gap@T+D, lidar_gap@T+D (T, D in seconds from the start)");
   bool no_progress = false;
   sim_cmd->add_flag("--no-progress", no_progress, "no progress bar");
   sim_cmd->add_flag("--perfect-sensors", simulate.perfect_sensors,

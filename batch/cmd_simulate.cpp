@@ -31,6 +31,8 @@ int runSimulate(const SimulateOptions& options) {
   sim_options.formats.bag = options.bag;
   sim_options.formats.pcap = options.pcap;
   sim_options.formats.packets = options.packets;
+  for (const std::string& fault : options.faults)
+    sim_options.faults.push_back(sim::parseSimFault(fault));
   if (options.ros2 == "db3") sim_options.formats.ros2 = sim::Ros2Format::kDb3;
   if (options.ros2 == "mcap") sim_options.formats.ros2 = sim::Ros2Format::kMcap;
   if (options.mcap_compression == "none")

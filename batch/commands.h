@@ -57,6 +57,7 @@ struct SimulateOptions {
   std::string ros2;                       ///< --ros2: "db3" or "mcap"; empty = no ROS 2 bag
   std::string mcap_compression = "zstd";  ///< --compression: none, zstd, lz4 (MCAP chunks)
   bool packets = false;                   ///< --packets: LiDAR as VelodyneScan packets
+  std::vector<std::string> faults;        ///< --fault (repeatable): injected faults
 };
 
 struct EvalOptions {

@@ -30,6 +30,8 @@ void visitInput(V& v, InputConfig& c) {
   v.field("pcap_clock", c.pcap_clock);
   v.field("pcap_data_port", c.pcap_data_port);
   v.field("pcap_position_port", c.pcap_position_port);
+  v.field("imu_spike_gyro", c.imu_spike_gyro);
+  v.field("imu_spike_accel", c.imu_spike_accel);
 }
 
 template <typename V>

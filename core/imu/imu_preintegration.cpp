@@ -82,6 +82,9 @@ void ImuPreintegration::integrate() {
   const double sa2 = noise_.accel_noise_density * noise_.accel_noise_density;
   const double sbg2 = noise_.gyro_random_walk * noise_.gyro_random_walk;
   const double sba2 = noise_.accel_random_walk * noise_.accel_random_walk;
+  const double gap_threshold = imuGapThreshold(noise_);
+  const double dg2 = noise_.dropout_gyro_sigma * noise_.dropout_gyro_sigma;
+  const double da2 = noise_.dropout_accel_sigma * noise_.dropout_accel_sigma;
 
   Eigen::Quaterniond q = Eigen::Quaterniond::Identity();
   Eigen::Vector3d v = Eigen::Vector3d::Zero();
@@ -137,6 +140,12 @@ void ImuPreintegration::integrate() {
     //   P' = A P A^T + (A C) B^T + B (A C)^T + B (S + Qwhite) B^T,  C' = A C + B S.
     Eigen::Matrix<double, 6, 1> q_white;
     q_white << sg2 / dt, sg2 / dt, sg2 / dt, sa2 / dt, sa2 / dt, sa2 / dt;
+    if (k1.sample_spacing > gap_threshold) {
+      // A dropout: the signal here is an interpolation, its mean over the
+      // step unknown to dropout_*_sigma (docs/method/imu.md, "Dropouts").
+      q_white.head<3>().array() += dg2;
+      q_white.tail<3>().array() += da2;
+    }
     const Matrix96 AC = A.apply(C);
     const Matrix96 B_SQ = B * (S + q_white).asDiagonal();
     const Matrix9d AP = A.apply(P);

@@ -78,6 +78,7 @@ ImuSignal sliceImuSignal(const ImuSample* samples, std::size_t count, std::int64
   for (const ImuSample* s = first + 1; s < last; ++s) {
     if (s->stamp_ns == prev->stamp_ns) continue;  // duplicate stamp
     signal.knots.push_back(knotAt(*s, start_ns));
+    signal.knots.back().sample_spacing = nsToSeconds(s->stamp_ns - prev->stamp_ns);
     prev = s;
   }
   if (last->stamp_ns == end_ns) {
@@ -86,6 +87,7 @@ ImuSignal sliceImuSignal(const ImuSample* samples, std::size_t count, std::int64
     // prev is the last distinct sample before end_ns (or first, which is < end_ns).
     signal.knots.push_back(interpolate(*prev, *last, end_ns, start_ns));
   }
+  signal.knots.back().sample_spacing = nsToSeconds(last->stamp_ns - prev->stamp_ns);
   for (std::size_t k = 1; k < signal.knots.size(); ++k) {
     signal.max_gap = std::max(signal.max_gap, signal.knots[k].t - signal.knots[k - 1].t);
   }

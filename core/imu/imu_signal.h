@@ -18,6 +18,10 @@ struct ImuKnot {
   double t = 0.0;                                   ///< time since ImuSignal::start_ns [s]
   Eigen::Vector3d gyro = Eigen::Vector3d::Zero();   ///< angular rate, IMU frame [rad/s]
   Eigen::Vector3d accel = Eigen::Vector3d::Zero();  ///< specific force, IMU frame [m/s^2]
+  /// Spacing of the two IMU samples between which the interval from the
+  /// previous knot to this one lies (that interval's length unless an end
+  /// was interpolated; 0 for the first knot) [s]: a dropout when long.
+  double sample_spacing = 0.0;
 };
 
 struct ImuSignal {

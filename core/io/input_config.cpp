@@ -18,6 +18,8 @@ void InputConfig::validate() const {
              "must be a UDP port (0 = any)");
   requireKey(pcap_position_port >= 0 && pcap_position_port <= 65535, "input.pcap_position_port",
              "must be a UDP port (0 = any)");
+  requireKey(imu_spike_gyro >= 0.0, "input.imu_spike_gyro", "must be >= 0 (0 = off)");
+  requireKey(imu_spike_accel >= 0.0, "input.imu_spike_accel", "must be >= 0 (0 = off)");
 }
 
 }  // namespace storey

@@ -22,6 +22,12 @@ struct InputConfig {
       "sensor";               ///< pcap: "sensor" (packet timestamps) or "capture" (record times)
   int pcap_data_port = 2368;  ///< pcap: UDP port of data packets; 0 = any port
   int pcap_position_port = 8308;  ///< pcap: UDP port of position (IMU) packets; 0 = any port
+  /// An IMU sample whose angular rate differs from its two neighbours' mean
+  /// by more than this while they agree (within half of it) is a spike (a
+  /// saturated or garbled reading), replaced by their interpolation; 0 = off [rad/s].
+  double imu_spike_gyro = 10.0;
+  /// The same for the specific force [m/s^2] (60: about 6 g); 0 = off.
+  double imu_spike_accel = 60.0;
 
   /// Checks value ranges; throws storey::Error naming the key (under `input.`) at fault.
   void validate() const;

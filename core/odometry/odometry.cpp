@@ -221,7 +221,7 @@ void LidarInertialOdometry::processScan(const Scan& scan) {
       os << "gap of " << nsToSeconds(frame->state_ns - last.state_ns)
          << " s between scans at t = " << nsToSeconds(frame->scan_stamp_ns)
          << " s: the IMU alone carries the motion across it";
-      logWarning(os.str());
+      logInfo(os.str());  // the reader's fault check warned (faults.lidar_gap)
     }
     frame->from_previous = std::make_unique<ImuPreintegration>(ImuPreintegration::fromSamples(
         imu_, last.state_ns, frame->state_ns, previous.bias, sensor_.imu));

@@ -36,7 +36,7 @@ struct OdometryConfig {
   double pose_sigma_translation = 0.02;      ///< accuracy of a registered pose, used when the
                                              ///< oldest state leaves the window [m]
   double pose_sigma_rotation = 0.005;        ///< same for its rotation [rad]
-  double max_scan_gap = 0.5;                 ///< a longer time between scans is an error [s]
+  double max_scan_gap = 0.5;  ///< a longer time between scans is logged (the reader warns: faults) [s]
 
   /// Checks value ranges; throws storey::Error naming the key (under `odometry.`) at fault.
   void validate() const;

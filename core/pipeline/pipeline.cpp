@@ -4,6 +4,7 @@
 #include "common/error.h"
 #include "common/log.h"
 #include "common/stopwatch.h"
+#include "io/imu_guard.h"
 #include "io/log_reader.h"
 #include "map/map_scan_selector.h"
 #include "odometry/odometry.h"
@@ -20,7 +21,9 @@ PipelineResult runPipeline(const std::string& log_path, const Config& config,
   config.validate();
   const Stopwatch wall;
   const LogRecorder warnings;  // every warning of the run, for its report
-  std::unique_ptr<LogReader> reader = openLog(log_path, config.input, config.sensor);
+  FaultLog faults;
+  std::unique_ptr<LogReader> reader = std::make_unique<GuardedLogReader>(
+      openLog(log_path, config.input, config.sensor), config.input, config.sensor.imu, faults);
   logInfo("reading " + reader->describe());
   LidarInertialOdometry odometry(config.odometry, config.sensor);
   std::unique_ptr<Backend> backend = makeBackend(config.backend);
@@ -32,6 +35,7 @@ PipelineResult runPipeline(const std::string& log_path, const Config& config,
   if (progress && !progress(1.0, "back end: final optimisation")) throw Cancelled();
   SlamResult slam = backend->finish();
   report.setInput(log_path, reader->stats(), odometry.drops());
+  report.setFaults(faults);
   report.setInitialisation(odometry.initialState());
   report.setTrajectory(slam.trajectory);
   report.setWallTime(wall.seconds());

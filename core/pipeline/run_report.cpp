@@ -13,6 +13,7 @@ namespace storey {
 struct RunReportBuilder::Data {
   Config config;
   nlohmann::json input, initialisation, drift;
+  nlohmann::json faults = nlohmann::json::object();
   double wall_seconds = 0.0;
   double log_seconds = 0.0;
   std::int64_t scans = 0;
@@ -73,6 +74,18 @@ void RunReportBuilder::setInput(const std::string& log_path, const LogReadStats&
                    {{"before_first_imu_sample", drops.before_first_imu},
                     {"after_last_imu_sample", drops.after_last_imu},
                     {"empty", drops.empty}}}};
+}
+
+void RunReportBuilder::setFaults(const FaultLog& faults) {
+  nlohmann::json out = nlohmann::json::object();
+  for (const auto& [kind, summary] : faults.kinds()) {
+    nlohmann::json events = nlohmann::json::array();
+    for (const FaultEvent& e : summary.first)
+      events.push_back({{"time_s", e.time}, {"duration_s", e.duration}, {"detail", e.detail}});
+    out[kind] = {
+        {"count", summary.count}, {"total_duration_s", summary.total_duration}, {"events", events}};
+  }
+  data_->faults = out;
 }
 
 void RunReportBuilder::setInitialisation(const ImuState& s) {
@@ -237,6 +250,7 @@ nlohmann::json RunReportBuilder::json() const {
   nlohmann::json report;
   report["storey_version"] = storeyVersion();
   report["input"] = d.input;
+  report["faults"] = d.faults;
   report["imu_initialisation"] = d.initialisation;
   report["odometry"] = {
       {"scans", d.scans},

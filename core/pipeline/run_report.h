@@ -13,6 +13,7 @@
 #include "backend/backend.h"
 #include "config/config.h"
 #include "imu/imu_state.h"
+#include "io/fault_log.h"
 #include "io/log_reader.h"
 #include "odometry/odometry.h"
 #include "pipeline/map_stage.h"
@@ -26,6 +27,8 @@ class RunReportBuilder {
   ~RunReportBuilder();
   void addScan(const OdometryResult& scan);
   void setInput(const std::string& log_path, const LogReadStats& stats, const OdometryDrops& drops);
+  /// The faults found in the log (report.json "faults", docs/faults.md).
+  void setFaults(const FaultLog& faults);
   void setInitialisation(const ImuState& initial_state);
   void setTrajectory(const Trajectory& trajectory);
   void setWallTime(double seconds);

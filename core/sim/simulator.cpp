@@ -193,6 +193,25 @@ SimulationResult simulate(const BuildingSpec& spec, const SimulationOptions& opt
   const ImuSimulation imu =
       simulateImu(trajectory, sensors, result.duration, options.perfect_sensors, spec.seed);
   result.imu_samples = static_cast<std::int64_t>(imu.samples.size());
+  // Faults: which samples the logs leave out or hold as full-range readings.
+  std::vector<double> imu_stamps(imu.samples.size());
+  for (std::size_t i = 0; i < imu.samples.size(); ++i)
+    imu_stamps[i] = imu.samples[i].stamp_ns * 1e-9;
+  const SampleFaults imu_faults = imuSampleFaults(options.faults, imu_stamps);
+  auto loggedImu = [&](std::size_t i, ImuSample& sample) {
+    if (imu_faults.drop[i]) return false;
+    sample = imu.samples[i];
+    if (imu_faults.spike[i]) {
+      sample.gyro = Eigen::Vector3d(kSpikeGyro, -kSpikeGyro, kSpikeGyro);
+      sample.accel = Eigen::Vector3d(kSpikeAccel, -kSpikeAccel, kSpikeAccel);
+    }
+    return true;
+  };
+  const bool lidar_gaps =
+      std::any_of(options.faults.begin(), options.faults.end(),
+                  [](const SimFault& f) { return f.kind == SimFaultKind::kLidarGap; });
+  if (lidar_gaps && (formats.pcap || formats.packets))
+    throw Error("--fault lidar_gap: only for point clouds (not with --pcap or --packets)");
   writeFileAtomically(staging.file(kImuTruthFile), [&](std::ostream& out) {
     out << "# timestamp x y z qx qy qz qw (IMU frame in the world frame)\n";
     for (std::size_t i = 0; i < imu.samples.size(); ++i)
@@ -211,8 +230,14 @@ SimulationResult simulate(const BuildingSpec& spec, const SimulationOptions& opt
   result.scans = scan_count;
 
   if (options.formats.pcap) {
+    std::vector<ImuSample> logged;
+    logged.reserve(imu.samples.size());
+    for (std::size_t i = 0; i < imu.samples.size(); ++i) {
+      ImuSample sample;
+      if (loggedImu(i, sample)) logged.push_back(sample);
+    }
     writeImuCsv(
-        staging.file(kImuCsvFile), imu.samples, start_ns,
+        staging.file(kImuCsvFile), logged, start_ns,
         {"Storey simulator: IMU samples of " + spec.name + " (seed " + std::to_string(spec.seed) +
              "), the clock of " + std::string(kPcapFile),
          "time [s]; gyro [rad/s]; accel [m/s^2] (specific force, +g up at rest); IMU frame"});
@@ -260,7 +285,8 @@ SimulationResult simulate(const BuildingSpec& spec, const SimulationOptions& opt
         orientation.q_world_imu = imu.T_world_imu[next_imu].rotation();
         orientation.variance = sensors.imu.orientation_sigma.cwiseAbs2();
       }
-      ImuSample sample = imu.samples[next_imu++];
+      ImuSample sample;
+      if (!loggedImu(next_imu++, sample)) continue;
       sample.stamp_ns += start_ns;
       for (auto& log : logs) {
         log->writeImu(sensors.imu_topic, sensors.imu_frame_id, sample, gyro_variance,
@@ -331,8 +357,10 @@ SimulationResult simulate(const BuildingSpec& spec, const SimulationOptions& opt
                    trajectory.frame(scan.stamp_ns * 1e-9, sensors.T_body_lidar).T_world_frame);
       result.points += static_cast<std::int64_t>(scan.points.size());
       scan.stamp_ns += start_ns;
+      const bool blackout =
+          lidar_gaps && inLidarGap(options.faults, (scan.stamp_ns - start_ns) * 1e-9);
       for (auto& log : logs) {
-        if (packets) break;
+        if (packets || blackout) break;
         if (organised) {
           log->writeOrganisedScan(sensors.points_topic, scan.frame_id, cast.organised[i],
                                   scan.stamp_ns, start_ns + receipt_ns);

@@ -8,10 +8,12 @@
 /// initial heading, origin at the LiDAR's start position.
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "common/progress.h"
 #include "sim/building_spec.h"
 #include "sim/mcap_writer.h"
+#include "sim/sim_faults.h"
 
 namespace storey::sim {
 
@@ -54,6 +56,9 @@ struct SimulationOptions {
   double max_duration = 0.0;     ///< stop the sensors after this time; 0 = the whole walk [s]
   bool compress = true;          ///< LZ4 chunks in the bag
   int threads = 0;               ///< ray-casting threads; 0 = all cores
+  /// Faults injected into the logs (not into the ground truth); LiDAR gaps
+  /// only with point clouds (not with pcap or packets).
+  std::vector<SimFault> faults;
 };
 
 struct SimulationResult {

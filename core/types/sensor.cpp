@@ -1,5 +1,7 @@
 #include "types/sensor.h"
 
+#include <algorithm>
+
 #include <cmath>
 
 #include "common/error.h"
@@ -29,6 +31,8 @@ LidarModel lidarModelFromString(const std::string& name) {
   }
   throw Error("must be one of VLP-16, VLP-32C, HDL-32E, OS1-64, generic; got '" + name + "'");
 }
+
+double imuGapThreshold(const ImuNoise& imu) { return std::max(5.0 / imu.rate_hz, 0.05); }
 
 void SensorConfig::validate() const {
   if (!(std::abs(time_offset_lidar_to_imu) <= 1.0))

@@ -23,7 +23,16 @@ struct ImuNoise {
   double gyro_random_walk = 1.0e-5;     ///< gyro bias random walk [rad/s^2/sqrt(Hz)]
   double accel_random_walk = 1.0e-4;    ///< accel bias random walk [m/s^3/sqrt(Hz)]
   double gravity = 9.81;                ///< magnitude of gravity [m/s^2]
+  /// Across a dropout (samples further apart than imuGapThreshold()) the
+  /// rate and force are unknown: their mean over such an interval gets this
+  /// sigma on top of the white noise's (docs/method/imu.md, "Dropouts").
+  double dropout_gyro_sigma = 1.0;   ///< [rad/s]
+  double dropout_accel_sigma = 2.0;  ///< [m/s^2]
 };
+
+/// IMU samples further apart than this are a dropout: 5 nominal periods, and
+/// at least 50 ms [s].
+double imuGapThreshold(const ImuNoise& imu);
 
 /// The sensor set-up: what a calibration file describes.
 struct SensorConfig {
