@@ -13,10 +13,20 @@
 #include "progress_bar.h"
 #include "render/render.h"
 #include "sim/simulator.h"
+#include "stop_signals.h"
 
 namespace storey::cli {
 
-int runRun(const RunOptions& options) {
+namespace {
+
+/// `callback`, returning false (stop) once Ctrl-C or SIGTERM has arrived.
+ProgressFn stoppable(ProgressFn callback) {
+  return [callback](double fraction, const std::string& stage) {
+    return !StopSignals::requested() && callback(fraction, stage);
+  };
+}
+
+int runStoppable(const RunOptions& options) {
   Config config = configFromOptions(options.common);
   if (options.no_srp) config.backend.srp = false;
   if (options.no_render) config.render.enabled = false;
@@ -27,8 +37,8 @@ int runRun(const RunOptions& options) {
     std::cerr << "storey run: no LOG given: simulating the built-in building '" << options.preset
               << "' into " << sim_dir << '\n';
     ProgressBar sim_bar("run");
-    const sim::SimulationResult sim =
-        sim::simulate(sim::loadBuildingSpec(options.preset), {}, sim_dir, sim_bar.callback());
+    const sim::SimulationResult sim = sim::simulate(sim::loadBuildingSpec(options.preset), {},
+                                                    sim_dir, stoppable(sim_bar.callback()));
     sim_bar.done();
     std::cerr << "storey run: simulated " << sim.path_length << " m in " << sim.duration << " s, "
               << sim.scans << " scans\n";
@@ -40,8 +50,8 @@ int runRun(const RunOptions& options) {
                            (std::filesystem::path(sim_dir) / sim::kCalibrationFile).string());
   }
   ProgressBar bar("run");
-  const PipelineResult result =
-      runPipeline(log_path, config, options.out_dir, bar.callback(), bar.logTimeCallback());
+  const PipelineResult result = runPipeline(log_path, config, options.out_dir,
+                                            stoppable(bar.callback()), bar.logTimeCallback());
   bar.done();
   if (config.render.enabled) {
     // The SLAM outputs are written: a render failure is only a warning here.
@@ -51,10 +61,12 @@ int runRun(const RunOptions& options) {
       request.ground_truth = ground_truth;
       ProgressBar render_bar("render");
       const render::RenderSummary summary =
-          render::renderRun(request, config.render, render_bar.callback());
+          render::renderRun(request, config.render, stoppable(render_bar.callback()));
       render_bar.done();
       std::cout << summary.images.size() << " renders in " << options.out_dir << "/renders ("
                 << std::fixed << std::setprecision(1) << summary.seconds << " s)\n";
+    } catch (const Cancelled&) {
+      throw;
     } catch (const std::exception& e) {
       std::cerr << "storey run: warning: renders not written: " << e.what()
                 << " (the mapping outputs are complete; retry with `storey render "
@@ -63,6 +75,24 @@ int runRun(const RunOptions& options) {
   }
   std::cout << "storey run: finished\n" << summariseRun(result.report_json, options.out_dir).text();
   return 0;
+}
+
+}  // namespace
+
+int runRun(const RunOptions& options) {
+  // Ctrl-C / SIGTERM stop the run at its next progress report (within a
+  // fraction of a second while reading the log); outputs are written whole or
+  // not at all (common/atomic_file.h).
+  const StopSignals stop_signals;
+  try {
+    return runStoppable(options);
+  } catch (const Cancelled&) {
+    if (!StopSignals::requested()) throw;
+    std::cerr << "storey run: stopped by " << StopSignals::signalName()
+              << "; no output file of this run is half-written (files it had not written yet "
+                 "are missing or from an earlier run)\n";
+    return 130;
+  }
 }
 
 }  // namespace storey::cli

@@ -12,36 +12,10 @@
 
 #include "fleet_task.h"
 #include "progress_bar.h"
+#include "stop_signals.h"
 
 namespace storey::cli {
 namespace {
-
-std::atomic<bool> g_stop{false};  // set by the signal handler only
-
-extern "C" void onStopSignal(int) {
-  g_stop = true;
-}
-
-/// Installs the stop handler for SIGINT and SIGTERM while alive.
-class StopSignals {
- public:
-  StopSignals() {
-    g_stop = false;
-    struct sigaction action {};
-    action.sa_handler = onStopSignal;
-    sigemptyset(&action.sa_mask);
-    sigaction(SIGINT, &action, &old_int_);
-    sigaction(SIGTERM, &action, &old_term_);
-  }
-  ~StopSignals() {
-    sigaction(SIGINT, &old_int_, nullptr);
-    sigaction(SIGTERM, &old_term_, nullptr);
-  }
-
- private:
-  struct sigaction old_int_ {};
-  struct sigaction old_term_ {};
-};
 
 std::string counts(std::size_t done, std::size_t running, std::size_t failed, std::size_t queued) {
   return std::to_string(done) + " done, " + std::to_string(running) + " running, " +
@@ -67,7 +41,7 @@ LocalRunSummary runLocal(const FleetPlan& plan, int jobs) {
     show();
   }
   TaskHooks hooks;
-  hooks.stop = &g_stop;
+  hooks.stop = &StopSignals::flag();
   hooks.started = [&](pid_t pid) {
     std::lock_guard<std::mutex> lock(mutex);
     children.insert(pid);
@@ -81,7 +55,7 @@ LocalRunSummary runLocal(const FleetPlan& plan, int jobs) {
       std::size_t task;
       {
         std::lock_guard<std::mutex> lock(mutex);
-        if (g_stop || next >= total) return;
+        if (StopSignals::requested() || next >= total) return;
         task = next++;
         ++running;
         show();
@@ -108,8 +82,8 @@ LocalRunSummary runLocal(const FleetPlan& plan, int jobs) {
   for (;;) {
     {
       std::lock_guard<std::mutex> lock(mutex);
-      if (running == 0 && (next >= total || g_stop)) break;
-      if (g_stop)
+      if (running == 0 && (next >= total || StopSignals::requested())) break;
+      if (StopSignals::requested())
         for (pid_t pid : children)
           if (signalled.insert(pid).second) kill(pid, SIGTERM);
     }
@@ -117,7 +91,7 @@ LocalRunSummary runLocal(const FleetPlan& plan, int jobs) {
   }
   for (std::thread& t : workers) t.join();
   bar.done();
-  return {g_stop.load()};
+  return {StopSignals::requested()};
 }
 
 }  // namespace storey::cli

@@ -18,16 +18,12 @@
 #include "common/error.h"
 #include "io/rosbag_structure.h"
 #include "progress_bar.h"
+#include "stop_signals.h"
 
 namespace storey::cli {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::atomic<bool> g_stop_follow{false};
-extern "C" void onFollowSignal(int) {
-  g_stop_follow = true;
-}
 
 std::string shellQuoted(const std::string& s) {
   std::string q = "'";
@@ -264,13 +260,7 @@ bool slurmJobActive(const FleetPlan& plan) {
 
 bool followSlurm(const FleetPlan& plan, double poll_seconds) {
   if (plan.job_id.empty()) return true;
-  g_stop_follow = false;
-  struct sigaction action {
-  }, old_int{}, old_term{};
-  action.sa_handler = onFollowSignal;
-  sigemptyset(&action.sa_mask);
-  sigaction(SIGINT, &action, &old_int);
-  sigaction(SIGTERM, &action, &old_term);
+  const StopSignals signals;
   const FleetPaths paths{plan.fleet_out};
   const std::size_t total = plan.tasks.size();
   ProgressBar bar("batch");
@@ -302,18 +292,16 @@ bool followSlurm(const FleetPlan& plan, double poll_seconds) {
                   plan.job_id + ")");
     bar.update(static_cast<double>(done + failed) / static_cast<double>(total), "logs");
     if (queued && queued->empty()) break;
-    if (g_stop_follow) {
+    if (StopSignals::requested()) {
       bar.print("batch: stopping: scancel " + plan.job_id);
       runCommand("scancel", {plan.job_id});
       stopped = true;
-      g_stop_follow = false;
+      StopSignals::clear();
     }
-    for (double waited = 0.0; waited < poll_seconds && !g_stop_follow; waited += 0.1)
+    for (double waited = 0.0; waited < poll_seconds && !StopSignals::requested(); waited += 0.1)
       std::this_thread::sleep_for(std::chrono::milliseconds(100));
   }
   bar.done();
-  sigaction(SIGINT, &old_int, nullptr);
-  sigaction(SIGTERM, &old_term, nullptr);
   return !stopped;
 }
 

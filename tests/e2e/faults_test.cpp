@@ -6,6 +6,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <chrono>
+#include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 
@@ -94,6 +96,34 @@ TEST(Faults, ALidarBlackoutIsCountedAndBridgedByTheImu) {
   EXPECT_NEAR(gaps["events"][0]["duration_s"].get<double>(), 1.0, 0.06);
   EXPECT_EQ(countOf(run.err, "LiDAR gap at"), 1u) << run.err;
   EXPECT_LT(run.ate_se3, 0.012);
+}
+
+TEST(Faults, CtrlCStopsTheRunAtOnceAndSaysSo) {
+  // SIGINT 1.5 s into a run of about 5 s (coreutils' timeout sends it);
+  // --preserve-status: the exit status is storey's.
+  test::TempDir dir;
+  const std::string sim = dir.file("sim"), out = dir.file("out");
+  ASSERT_EQ(test::runStorey("simulate tiny --no-progress -o " + test::shellQuoted(sim),
+                            dir.path().string())
+                .exit_code,
+            0);
+  const auto start = std::chrono::steady_clock::now();
+  const auto r =
+      test::runStorey("run " + test::shellQuoted(sim + "/simulation.bag") + " --calibration " +
+                          test::shellQuoted(sim + "/calibration.yaml") + " --no-render -o " +
+                          test::shellQuoted(out),
+                      dir.path().string(), "timeout --preserve-status -s INT 1.5 ");
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  EXPECT_EQ(r.exit_code, 130) << r.err;
+  EXPECT_NE(r.err.find("storey run: stopped by Ctrl-C (SIGINT)"), std::string::npos) << r.err;
+  // Within a second of the signal (3 s allowed for a loaded machine).
+  EXPECT_LT(seconds, 1.5 + 3.0);
+  if (std::filesystem::exists(out)) {
+    for (const auto& entry : std::filesystem::recursive_directory_iterator(out)) {
+      EXPECT_EQ(entry.path().filename().string().find(".tmp-"), std::string::npos) << entry.path();
+    }
+  }
 }
 
 TEST(Faults, AFaultArgumentItCannotReadIsOneLine) {

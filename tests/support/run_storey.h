@@ -19,11 +19,13 @@ struct RunResult {
 
 inline std::string shellQuoted(const std::string& s) { return "'" + s + "'"; }
 
-/// `scratch_dir` receives the stderr capture file.
-inline RunResult runStorey(const std::string& args, const std::string& scratch_dir) {
+/// `scratch_dir` receives the stderr capture file; `wrapper` (e.g. "timeout
+/// -s INT 2 ") is put before the binary in the shell command.
+inline RunResult runStorey(const std::string& args, const std::string& scratch_dir,
+                           const std::string& wrapper = "") {
   const std::string err_file = scratch_dir + "/stderr.txt";
   const std::string command =
-      shellQuoted(STOREY_BINARY) + " " + args + " 2>" + shellQuoted(err_file);
+      wrapper + shellQuoted(STOREY_BINARY) + " " + args + " 2>" + shellQuoted(err_file);
   RunResult result;
   FILE* pipe = ::popen(command.c_str(), "r");
   if (pipe == nullptr) return result;
