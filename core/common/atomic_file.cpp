@@ -1,11 +1,15 @@
 #include "common/atomic_file.h"
 
+#include <signal.h>
 #include <unistd.h>
 
 #include <atomic>
+#include <cerrno>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <regex>
+#include <vector>
 
 #include "common/error.h"
 
@@ -25,8 +29,7 @@ void commitTemporary(const std::string& temporary_path, const std::string& path)
   }
 }
 
-void writeFileAtomically(const std::string& path,
-                         const std::function<void(std::ostream&)>& write) {
+void writeFileAtomically(const std::string& path, const std::function<void(std::ostream&)>& write) {
   const std::string temporary = temporaryPathFor(path);
   try {
     {
@@ -46,6 +49,24 @@ void writeFileAtomically(const std::string& path,
 
 void writeFileAtomically(const std::string& path, const std::string& content) {
   writeFileAtomically(path, [&](std::ostream& out) { out << content; });
+}
+
+std::size_t removeStaleTemporaries(const std::string& dir) {
+  static const std::regex kTemporary(R"(.*\.tmp-([0-9]{1,9})-[0-9]+)");
+  std::error_code ec;
+  std::vector<std::filesystem::path> stale;
+  for (auto it = std::filesystem::recursive_directory_iterator(dir, ec);
+       !ec && it != std::filesystem::recursive_directory_iterator(); it.increment(ec)) {
+    std::smatch m;
+    const std::string name = it->path().filename().string();
+    if (!it->is_regular_file(ec) || !std::regex_match(name, m, kTemporary)) continue;
+    const pid_t pid = static_cast<pid_t>(std::stol(m[1].str()));
+    // Its writer is gone when no process has its pid (a reused pid leaves it).
+    if (pid != ::getpid() && ::kill(pid, 0) == -1 && errno == ESRCH) stale.push_back(it->path());
+  }
+  std::size_t removed = 0;
+  for (const auto& path : stale) removed += std::filesystem::remove(path, ec) ? 1 : 0;
+  return removed;
 }
 
 }  // namespace storey

@@ -18,4 +18,9 @@ void writeFileAtomically(const std::string& path, const std::string& content);
 std::string temporaryPathFor(const std::string& path);
 void commitTemporary(const std::string& temporary_path, const std::string& path);
 
+/// Removes the temporaries ("NAME.tmp-PID-N") under `dir` (recursively)
+/// whose writer is no longer running: what a killed process (SIGKILL, power
+/// loss) left behind. Returns how many were removed; a missing `dir` is none.
+std::size_t removeStaleTemporaries(const std::string& dir);
+
 }  // namespace storey

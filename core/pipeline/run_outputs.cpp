@@ -5,6 +5,7 @@
 
 #include "common/atomic_file.h"
 #include "common/error.h"
+#include "common/log.h"
 #include "export/kitti.h"
 #include "export/planes_json.h"
 #include "export/report_html.h"
@@ -19,6 +20,10 @@ void createOutputFolder(const std::string& out_dir) {
   std::error_code ec;
   fs::create_directories(out_dir, ec);
   if (ec) throw Error(out_dir + ": cannot create the output folder: " + ec.message());
+  const std::size_t stale = removeStaleTemporaries(out_dir);
+  if (stale > 0)
+    logInfo(out_dir + ": removed " + std::to_string(stale) +
+            " temporary file(s) left by an earlier run that was killed");
 }
 
 std::string writeRunOutputs(const std::string& out_dir, const SlamResult& slam,

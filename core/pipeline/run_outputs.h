@@ -9,7 +9,8 @@
 
 namespace storey {
 
-/// Creates the output folder (storey::Error naming it when it cannot).
+/// Creates the output folder (storey::Error naming it when it cannot) and
+/// removes the temporaries a killed earlier run left in it.
 void createOutputFolder(const std::string& out_dir);
 
 /// Writes the trajectories (TUM, KITTI), keyframes.tum, planes.json (or

@@ -4,12 +4,16 @@
 // within a stated bound of the truth (SE(3)-aligned ATE, RMSE). The clean
 // run's ATE is about 5 mm.
 #include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <nlohmann/json.hpp>
+#include <sstream>
 
 #include "support/run_storey.h"
 #include "support/temp_dir.h"
@@ -124,6 +128,60 @@ TEST(Faults, CtrlCStopsTheRunAtOnceAndSaysSo) {
       EXPECT_EQ(entry.path().filename().string().find(".tmp-"), std::string::npos) << entry.path();
     }
   }
+}
+
+/// Every file under `dir` (relative path -> bytes), renders left out.
+std::map<std::string, std::string> filesUnder(const std::string& dir) {
+  std::map<std::string, std::string> files;
+  for (const auto& entry : std::filesystem::recursive_directory_iterator(dir)) {
+    if (!entry.is_regular_file()) continue;
+    std::ifstream in(entry.path(), std::ios::binary);
+    std::ostringstream bytes;
+    bytes << in.rdbuf();
+    files[std::filesystem::relative(entry.path(), dir).string()] = bytes.str();
+  }
+  return files;
+}
+
+TEST(Faults, AKilledRunLeavesTheEarlierOutputsWholeAndTheNextRunCleansUp) {
+  test::TempDir dir;
+  const std::string sim = dir.file("sim"), out = dir.file("out");
+  ASSERT_EQ(test::runStorey("simulate tiny --no-progress -o " + test::shellQuoted(sim),
+                            dir.path().string())
+                .exit_code,
+            0);
+  const std::string run = "run " + test::shellQuoted(sim + "/simulation.bag") + " --calibration " +
+                          test::shellQuoted(sim + "/calibration.yaml") + " --no-render -o " +
+                          test::shellQuoted(out);
+  ASSERT_EQ(test::runStorey(run, dir.path().string()).exit_code, 0);
+  const auto complete = filesUnder(out);
+  // A temporary of a writer that is gone (a child that has exited).
+  const pid_t child = ::fork();
+  if (child == 0) ::_exit(0);
+  ::waitpid(child, nullptr, 0);
+  const std::string left = out + "/map.ply.tmp-" + std::to_string(child) + "-0";
+  std::ofstream(left) << "half a map";
+
+  // SIGKILL 2 s in. Same log and configuration give the same bytes, so every
+  // output file is the complete run's, whether or not this one rewrote it
+  // before it died; only temporaries may be new.
+  const auto killed = test::runStorey(run, dir.path().string(), "timeout -s KILL 2 ");
+  EXPECT_NE(killed.exit_code, 0);
+  for (const auto& [name, bytes] : filesUnder(out)) {
+    if (name.find(".tmp-") != std::string::npos) continue;
+    ASSERT_TRUE(complete.count(name)) << name;
+    EXPECT_TRUE(complete.at(name) == bytes) << name << " differs after the kill";
+  }
+  for (const auto& [name, bytes] : complete)
+    EXPECT_TRUE(std::filesystem::exists(out + "/" + name)) << name;
+
+  // The next run removes what the killed ones left.
+  const auto again = test::runStorey(run, dir.path().string());
+  ASSERT_EQ(again.exit_code, 0) << again.err;
+  EXPECT_NE(again.err.find("left by an earlier run that was killed"), std::string::npos)
+      << again.err;
+  for (const auto& [name, bytes] : filesUnder(out))
+    EXPECT_EQ(name.find(".tmp-"), std::string::npos) << name;
 }
 
 TEST(Faults, AFaultArgumentItCannotReadIsOneLine) {
