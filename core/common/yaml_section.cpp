@@ -156,6 +156,10 @@ YamlSection YamlSection::section(const std::string& key) {
 void YamlSection::finish(const std::vector<std::string>& also_allowed) const {
   if (!node_ || !node_.IsMap()) return;
   for (const auto& entry : node_) {
+    if (!entry.first.IsScalar()) {  // a YAML complex key ("? [a, b]")
+      throw Error(source_ + ": a key" + (path_.empty() ? "" : " under '" + path_ + "'") +
+                  " is not a name" + lineOf(entry.first));
+    }
     const std::string key = entry.first.as<std::string>();
     if (known_.count(key) ||
         std::find(also_allowed.begin(), also_allowed.end(), key) != also_allowed.end())

@@ -78,6 +78,17 @@ TEST(Config, UnknownTopLevelSection) {
   EXPECT_NE(message.find("unknown key 'odometri'"), std::string::npos) << message;
 }
 
+TEST(Config, AKeyThatIsNotANameIsAnError) {
+  // Found by the fuzz run (tests/data/fuzz/config_yaml/complex_key.yaml): a
+  // YAML complex key threw yaml-cpp's BadConversion instead of an error.
+  Config config;
+  const std::string message =
+      errorOf([&] { applyConfigYaml(config, "input:\n  ? [a, b]\n  : 1\n", "c.yaml"); });
+  EXPECT_NE(message.find("c.yaml: a key under 'input' is not a name"), std::string::npos)
+      << message;
+  EXPECT_NE(message.find("line 2"), std::string::npos) << message;
+}
+
 TEST(Config, MistypedValueIsNamed) {
   Config config;
   std::string message =
