@@ -149,6 +149,35 @@ void readBenchRow(const std::string& seed_dir, BenchRow& row) {
   row.map_median_m = numberAt(*eval, {"map", "distance_m", "median"});
 }
 
+std::string seedRecordJson(const BenchRow& row, double max_duration) {
+  return Json{{"format", "storey-bench-seed"},
+              {"version", 1},
+              {"seed", row.seed},
+              {"max_duration_s", max_duration},
+              {"error", row.error.empty() ? Json(nullptr) : Json(row.error)},
+              {"peak_memory_mb", jsonOf(row.peak_memory_mb)}}
+             .dump(2) +
+         "\n";
+}
+
+bool readSeedRecord(const std::string& seed_dir, std::uint64_t seed, double max_duration,
+                    BenchRow& row) {
+  const std::optional<Json> record = readJson(fs::path(seed_dir) / "seed.json");
+  if (!record || record->value("format", "") != "storey-bench-seed") return false;
+  const Json& s = (*record)["seed"];
+  const std::optional<double> duration = numberAt(*record, {"max_duration_s"});
+  if (!s.is_number_unsigned() || s.get<std::uint64_t>() != seed || !duration ||
+      *duration != max_duration)
+    return false;
+  BenchRow kept;
+  kept.seed = seed;
+  if ((*record)["error"].is_string()) kept.error = (*record)["error"].get<std::string>();
+  kept.peak_memory_mb = numberAt(*record, {"peak_memory_mb"});
+  readBenchRow(seed_dir, kept);
+  row = kept;
+  return true;
+}
+
 Distribution distributionOf(const std::vector<std::optional<double>>& values,
                             bool higher_is_better) {
   std::vector<double> present;

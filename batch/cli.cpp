@@ -201,6 +201,9 @@ int main(int argc, char** argv) {
   bench_cmd->add_option("--duration", bench.max_duration,
                         "simulate only the first S seconds of each walk (quick checks)");
   bench_cmd->add_flag("--keep", bench.keep, "keep every seed's bag, mesh and map");
+  bench_cmd->add_flag("--resume", bench.resume,
+                      "keep the seeds that an earlier bench into the same folder finished "
+                      "(with the same --duration) and run only the others");
 
   BatchOptions batch;
   auto* batch_cmd = app.add_subcommand(

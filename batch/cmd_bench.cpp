@@ -3,6 +3,8 @@
 // against the truth; one table (markdown + JSON) with a row per seed and the
 // distribution of each figure. Each step is a child `storey` process (its
 // peak memory measured, its log kept); a failing seed is a row with its error.
+// A finished seed leaves seed.json; `--resume` keeps such seeds (an interrupted
+// or split benchmark goes on where it stopped).
 
 #include <algorithm>
 #include <atomic>
@@ -55,6 +57,13 @@ std::string fixed(double v, int decimals) {
   return text;
 }
 
+/// A finished seed in one line: its error, or storeys, ATE and worst floor.
+std::string summary(const BenchRow& row) {
+  if (!row.error.empty()) return "FAILED (" + row.error + ")";
+  return std::to_string(row.storeys) + " storeys, ATE " + (row.ate_m ? fixed(*row.ate_m, 3) : "?") +
+         " m, worst floor " + (row.worst_floor_m ? fixed(*row.worst_floor_m, 3) : "?") + " m";
+}
+
 }  // namespace
 
 int runBench(const BenchOptions& options) {
@@ -80,6 +89,15 @@ int runBench(const BenchOptions& options) {
       BenchRow& row = rows[i];
       row.seed = seeds[i];
       const fs::path dir = fs::path(options.out_dir) / ("seed-" + std::to_string(row.seed));
+      if (options.resume && readSeedRecord(dir.string(), row.seed, options.max_duration, row)) {
+        std::lock_guard<std::mutex> lock(print);
+        ++done;
+        bar.print("bench: [" + std::to_string(done) + "/" + std::to_string(seeds.size()) +
+                  "] seed " + std::to_string(row.seed) + ": " + summary(row) +
+                  " (kept from an earlier run)");
+        bar.update(static_cast<double>(done) / static_cast<double>(seeds.size()), "seeds");
+        continue;
+      }
       fs::remove_all(dir, ec);
       fs::create_directories(dir);
       const std::string sim = (dir / "sim").string(), run = (dir / "run").string();
@@ -112,6 +130,8 @@ int runBench(const BenchOptions& options) {
         }
       }
       readBenchRow(dir.string(), row);
+      // Written last: the seed is finished (what --resume keeps).
+      writeFileAtomically((dir / "seed.json").string(), seedRecordJson(row, options.max_duration));
       if (!options.keep) {
         // The bulky files; the spec, the reports and the logs stay.
         for (const char* bulky :
@@ -121,15 +141,8 @@ int runBench(const BenchOptions& options) {
       }
       std::lock_guard<std::mutex> lock(print);
       ++done;
-      std::string line = "bench: [" + std::to_string(done) + "/" + std::to_string(seeds.size()) +
-                         "] seed " + std::to_string(row.seed) + ": ";
-      if (!row.error.empty())
-        line += "FAILED (" + row.error + ")";
-      else
-        line += std::to_string(row.storeys) + " storeys, ATE " +
-                (row.ate_m ? fixed(*row.ate_m, 3) : "?") + " m, worst floor " +
-                (row.worst_floor_m ? fixed(*row.worst_floor_m, 3) : "?") + " m";
-      bar.print(line);
+      bar.print("bench: [" + std::to_string(done) + "/" + std::to_string(seeds.size()) + "] seed " +
+                std::to_string(row.seed) + ": " + summary(row));
       bar.update(static_cast<double>(done) / static_cast<double>(seeds.size()), "seeds");
     }
   };

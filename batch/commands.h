@@ -88,6 +88,7 @@ struct BenchOptions {
   int jobs = 0;                ///< --jobs: seeds at a time; 0 = the number of cores
   double max_duration = 0.0;   ///< --duration: simulate only this much of each walk [s]; 0 = all
   bool keep = false;           ///< --keep: keep bags, meshes and maps
+  bool resume = false;         ///< --resume: keep the seeds an earlier bench into out_dir finished
 };
 
 struct BatchOptions {

@@ -77,6 +77,43 @@ TEST(BenchCli, OneShortSeedEndToEnd) {
   EXPECT_TRUE(std::filesystem::exists(out + "/benchmark.md"));
   EXPECT_TRUE(std::filesystem::exists(out + "/seed-18/sim/spec.yaml"));
   EXPECT_FALSE(std::filesystem::exists(out + "/seed-18/sim/simulation.bag")) << "not --keep";
+
+  // --resume keeps the finished seed: nothing simulated again, the same row.
+  const auto spec_time = std::filesystem::last_write_time(out + "/seed-18/sim/spec.yaml");
+  const test::RunResult resumed = test::runStorey(
+      "bench --seeds 18 --jobs 1 --duration 12 --resume -o " + test::shellQuoted(out),
+      dir.path().string());
+  ASSERT_EQ(resumed.exit_code, 0) << resumed.err;
+  EXPECT_NE(resumed.err.find("seed 18: 2 storeys"), std::string::npos) << resumed.err;
+  EXPECT_NE(resumed.err.find("(kept from an earlier run)"), std::string::npos) << resumed.err;
+  EXPECT_EQ(std::filesystem::last_write_time(out + "/seed-18/sim/spec.yaml"), spec_time);
+  std::ifstream again(out + "/benchmark.json");
+  EXPECT_EQ(nlohmann::json::parse(again)["seeds"][0], row);
+}
+
+TEST(BenchTable, ASeedRecordIsKeptOnlyForItsSeedAndDuration) {
+  test::TempDir dir;
+  BenchRow row;
+  row.seed = 7;
+  row.peak_memory_mb = 321.0;
+  row.error = "run: storey: error: it broke";
+  {
+    std::ofstream out(dir.path() / "seed.json");
+    out << seedRecordJson(row, 12.0);
+  }
+  BenchRow kept;
+  EXPECT_FALSE(readSeedRecord(dir.path().string(), 8, 12.0, kept)) << "another seed's record";
+  EXPECT_FALSE(readSeedRecord(dir.path().string(), 7, 0.0, kept)) << "another --duration";
+  EXPECT_EQ(kept.seed, 0u) << "a record not kept leaves the row alone";
+  ASSERT_TRUE(readSeedRecord(dir.path().string(), 7, 12.0, kept));
+  EXPECT_EQ(kept.seed, 7u);
+  EXPECT_EQ(kept.error, "run: storey: error: it broke");
+  EXPECT_EQ(kept.peak_memory_mb, 321.0);
+  {
+    std::ofstream out(dir.path() / "seed.json");
+    out << "{\"format\": \"storey-bench-seed\", \"seed\": 7";  // cut short
+  }
+  EXPECT_FALSE(readSeedRecord(dir.path().string(), 7, 12.0, kept));
 }
 
 /// Processes whose command line mentions `text` (from /proc).
