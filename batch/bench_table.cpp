@@ -40,6 +40,15 @@ std::optional<double> numberAt(const Json& j, std::initializer_list<const char*>
   return node->get<double>();
 }
 
+/// The translation RMSE of an eval.json's ATE with this alignment ("se3", "none").
+std::optional<double> ateOf(const Json& eval, const std::string& alignment) {
+  if (!eval.contains("ate") || !eval["ate"].is_array()) return std::nullopt;
+  for (const Json& a : eval["ate"])
+    if (a.is_object() && a.value("alignment", "") == alignment)
+      return numberAt(a, {"translation_m", "rmse"});
+  return std::nullopt;
+}
+
 void fail(BenchRow& row, const std::string& what) {
   if (row.error.empty()) row.error = what;
 }
@@ -125,14 +134,8 @@ void readBenchRow(const std::string& seed_dir, BenchRow& row) {
   if (!eval) return fail(row, "no eval.json");
   row.path_m = numberAt(*eval, {"association", "gt_path_length_m"});
   row.end_drift_m = numberAt(*eval, {"drift", "estimate", "dxyz_m"});
-  if (eval->contains("ate") && (*eval)["ate"].is_array()) {
-    for (const Json& a : (*eval)["ate"]) {
-      const std::string alignment = a.value("alignment", "");
-      const std::optional<double> rmse = numberAt(a, {"translation_m", "rmse"});
-      if (alignment == "se3") row.ate_m = rmse;
-      if (alignment == "none") row.ate_unaligned_m = rmse;
-    }
-  }
+  row.ate_m = ateOf(*eval, "se3");
+  row.ate_unaligned_m = ateOf(*eval, "none");
   if ((*eval)["storeys"].is_object()) {
     const Json& s = (*eval)["storeys"];
     row.worst_floor_m = numberAt(s, {"max_abs_error_m"});
@@ -147,6 +150,8 @@ void readBenchRow(const std::string& seed_dir, BenchRow& row) {
     row.worst_height_m = worstStoreyHeightError(errors);
   }
   row.map_median_m = numberAt(*eval, {"map", "distance_m", "median"});
+  if (const std::optional<Json> odometry = readJson(dir / "eval_odometry.json"))
+    row.odometry_ate_m = ateOf(*odometry, "se3");
 }
 
 std::string seedRecordJson(const BenchRow& row, double max_duration) {
@@ -206,6 +211,7 @@ const Column kColumns[] = {
     {"path m", &BenchRow::path_m, 0, false},
     {"ATE m", &BenchRow::ate_m, 3, false},
     {"ATE unaligned m", &BenchRow::ate_unaligned_m, 3, false},
+    {"odometry ATE m", &BenchRow::odometry_ate_m, 3, false},
     {"end drift m", &BenchRow::end_drift_m, 3, false},
     {"worst floor m", &BenchRow::worst_floor_m, 3, false},
     {"worst height m", &BenchRow::worst_height_m, 3, false},

@@ -32,6 +32,7 @@ struct BenchRow {
   std::optional<double> path_m, duration_s;
   std::optional<double> ate_m;            ///< ATE RMSE after SE(3) alignment [m]
   std::optional<double> ate_unaligned_m;  ///< ATE RMSE without alignment [m]
+  std::optional<double> odometry_ate_m;   ///< ATE RMSE of the front end alone, SE(3) [m]
   std::optional<double> end_drift_m;      ///< end-point drift |dXYZ| [m]
   std::optional<double> worst_floor_m;    ///< largest |floor elevation error| [m]
   std::optional<double> worst_height_m;   ///< largest |floor-to-floor height error| [m]

@@ -119,7 +119,11 @@ int runBench(const BenchOptions& options) {
            {"eval", "--gt", sim + "/groundtruth_lidar.tum", "--est", run + "/trajectory.tum",
             "--storeys", sim + "/storeys.yaml", "--mesh", sim + "/building.ply", "--map",
             run + "/map.ply", "--json", (dir / "eval.json").string(), "--threads",
-            std::to_string(threads)}}};
+            std::to_string(threads)}},
+          // The front end alone (run/odometry.tum): is the back end an improvement?
+          {"eval_odometry",
+           {"eval", "--gt", sim + "/groundtruth_lidar.tum", "--est", run + "/odometry.tum",
+            "--json", (dir / "eval_odometry.json").string()}}};
       for (const auto& [name, args] : steps) {
         const std::string log = (dir / (name + ".log")).string();
         const ChildResult step = runSelf(args, log);

@@ -72,6 +72,7 @@ TEST(BenchCli, OneShortSeedEndToEnd) {
   EXPECT_TRUE(row["error"].is_null()) << row.dump();
   EXPECT_EQ(row["storeys"], 2);
   EXPECT_LT(row["ATE m"].get<double>(), 0.1);
+  EXPECT_LT(row["odometry ATE m"].get<double>(), 0.2) << "the front end alone, evaluated too";
   EXPECT_GT(row["peak MB"].get<double>(), 10.0);
   EXPECT_GT(row["RT factor"].get<double>(), 0.0);
   EXPECT_TRUE(std::filesystem::exists(out + "/benchmark.md"));
