@@ -152,6 +152,8 @@ void readBenchRow(const std::string& seed_dir, BenchRow& row) {
   row.map_median_m = numberAt(*eval, {"map", "distance_m", "median"});
   if (const std::optional<Json> odometry = readJson(dir / "eval_odometry.json"))
     row.odometry_ate_m = ateOf(*odometry, "se3");
+  if (const std::optional<Json> planes = readJson(dir / "eval_planes.json"))
+    row.wrong_matches = numberAt(*planes, {"planes", "off_their_plane_not_down_weighted"});
 }
 
 std::string seedRecordJson(const BenchRow& row, double max_duration) {
@@ -216,6 +218,7 @@ const Column kColumns[] = {
     {"worst floor m", &BenchRow::worst_floor_m, 3, false},
     {"worst height m", &BenchRow::worst_height_m, 3, false},
     {"map median m", &BenchRow::map_median_m, 4, false},
+    {"wrong matches", &BenchRow::wrong_matches, 0, false},
     {"RT factor", &BenchRow::real_time_factor, 1, true},
     {"peak MB", &BenchRow::peak_memory_mb, 0, false},
 };

@@ -37,7 +37,10 @@ struct BenchRow {
   std::optional<double> worst_floor_m;    ///< largest |floor elevation error| [m]
   std::optional<double> worst_height_m;   ///< largest |floor-to-floor height error| [m]
   std::optional<int> storeys_found;
-  std::optional<double> map_median_m;      ///< map-to-mesh median distance [m]
+  std::optional<double> map_median_m;  ///< map-to-mesh median distance [m]
+  /// Plane observations of the back end on another surface than their plane's
+  /// (checked with the true poses) and not down-weighted by its robust loss.
+  std::optional<double> wrong_matches;
   std::optional<double> real_time_factor;  ///< log seconds per wall second of `storey run`
   std::optional<double> peak_memory_mb;    ///< of `storey run` [MB]
 };

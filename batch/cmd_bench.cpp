@@ -123,7 +123,11 @@ int runBench(const BenchOptions& options) {
           // The front end alone (run/odometry.tum): is the back end an improvement?
           {"eval_odometry",
            {"eval", "--gt", sim + "/groundtruth_lidar.tum", "--est", run + "/odometry.tum",
-            "--json", (dir / "eval_odometry.json").string()}}};
+            "--json", (dir / "eval_odometry.json").string()}},
+          // The back end's plane associations checked with the true poses.
+          {"eval_planes",
+           {"eval", "--gt", sim + "/groundtruth_lidar.tum", "--est", run + "/trajectory.tum",
+            "--planes", run + "/planes.json", "--json", (dir / "eval_planes.json").string()}}};
       for (const auto& [name, args] : steps) {
         const std::string log = (dir / (name + ".log")).string();
         const ChildResult step = runSelf(args, log);

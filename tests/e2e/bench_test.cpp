@@ -73,6 +73,7 @@ TEST(BenchCli, OneShortSeedEndToEnd) {
   EXPECT_EQ(row["storeys"], 2);
   EXPECT_LT(row["ATE m"].get<double>(), 0.1);
   EXPECT_LT(row["odometry ATE m"].get<double>(), 0.2) << "the front end alone, evaluated too";
+  EXPECT_TRUE(row["wrong matches"].is_number()) << "the plane associations, checked";
   EXPECT_GT(row["peak MB"].get<double>(), 10.0);
   EXPECT_GT(row["RT factor"].get<double>(), 0.0);
   EXPECT_TRUE(std::filesystem::exists(out + "/benchmark.md"));
