@@ -8,7 +8,6 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <regex>
 #include <vector>
 
 #include "common/error.h"
@@ -51,16 +50,38 @@ void writeFileAtomically(const std::string& path, const std::string& content) {
   writeFileAtomically(path, [&](std::ostream& out) { out << content; });
 }
 
+namespace {
+
+bool allDigits(const std::string& text, std::size_t from, std::size_t to) {
+  if (from >= to) return false;
+  for (std::size_t i = from; i < to; ++i)
+    if (text[i] < '0' || text[i] > '9') return false;
+  return true;
+}
+
+/// The writer's pid when `name` is a temporary of temporaryPath(): NAME.tmp-PID-N
+/// (PID of 1-9 digits); 0 otherwise.
+pid_t temporaryWriter(const std::string& name) {
+  const std::size_t tag = name.rfind(".tmp-");
+  if (tag == std::string::npos) return 0;
+  const std::size_t pid_start = tag + 5;
+  const std::size_t dash = name.find('-', pid_start);
+  if (dash == std::string::npos || dash - pid_start > 9 || !allDigits(name, pid_start, dash) ||
+      !allDigits(name, dash + 1, name.size()))
+    return 0;
+  return static_cast<pid_t>(std::stol(name.substr(pid_start, dash - pid_start)));
+}
+
+}  // namespace
+
 std::size_t removeStaleTemporaries(const std::string& dir) {
-  static const std::regex kTemporary(R"(.*\.tmp-([0-9]{1,9})-[0-9]+)");
   std::error_code ec;
   std::vector<std::filesystem::path> stale;
   for (auto it = std::filesystem::recursive_directory_iterator(dir, ec);
        !ec && it != std::filesystem::recursive_directory_iterator(); it.increment(ec)) {
-    std::smatch m;
-    const std::string name = it->path().filename().string();
-    if (!it->is_regular_file(ec) || !std::regex_match(name, m, kTemporary)) continue;
-    const pid_t pid = static_cast<pid_t>(std::stol(m[1].str()));
+    if (!it->is_regular_file(ec)) continue;
+    const pid_t pid = temporaryWriter(it->path().filename().string());
+    if (pid <= 0) continue;
     // Its writer is gone when no process has its pid (a reused pid leaves it).
     if (pid != ::getpid() && ::kill(pid, 0) == -1 && errno == ESRCH) stale.push_back(it->path());
   }
