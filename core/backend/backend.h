@@ -56,7 +56,9 @@ struct BackendDecision {
 
 /// Everything the back end knows at the end of the log.
 struct SlamResult {
-  Trajectory odometry;    ///< the front end's pose of the LiDAR per scan
+  /// The front end's pose of the LiDAR per scan, levelled by its last
+  /// gravity estimate (one levelling for the whole log).
+  Trajectory odometry;
   Trajectory trajectory;  ///< final pose per scan (= odometry with the back end off)
   /// Keyframes at their final poses; the last scan of the log is always the
   /// last keyframe (so the end of the walk is in the map and constrained).
@@ -69,8 +71,13 @@ class Backend {
  public:
   virtual ~Backend() = default;
   /// One odometry result, in time order: the scan's reference time [s], the
-  /// odometry's pose of the LiDAR and the scan deskewed to that time (LiDAR frame).
-  virtual BackendDecision addScan(double time, const Pose& T_world_lidar, const Scan& deskewed) = 0;
+  /// odometry's pose of the LiDAR in its own rigid map frame, the current
+  /// levelling of that frame (world = q_world_odom odom; it changes as the
+  /// odometry's gravity estimate improves, so a back end composes poses in
+  /// the odometry frame and levels them once) and the scan deskewed to that
+  /// time (LiDAR frame).
+  virtual BackendDecision addScan(double time, const Pose& T_odom_lidar,
+                                  const Eigen::Quaterniond& q_world_odom, const Scan& deskewed) = 0;
   /// End of the log: the last scan becomes a keyframe, final solve.
   virtual SlamResult finish() = 0;
 };

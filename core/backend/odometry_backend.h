@@ -9,12 +9,17 @@ namespace storey {
 class OdometryBackend : public Backend {
  public:
   explicit OdometryBackend(const KeyframeConfig& config) : selector_(config) {}
-  BackendDecision addScan(double time, const Pose& T_world_lidar, const Scan& deskewed) override;
+  /// The decision's pose is the scan levelled as the odometry knows it now;
+  /// finish() levels every pose with the last levelling.
+  BackendDecision addScan(double time, const Pose& T_odom_lidar,
+                          const Eigen::Quaterniond& q_world_odom, const Scan& deskewed) override;
   SlamResult finish() override;
 
  private:
   KeyframeSelector selector_;
-  SlamResult result_;
+  Trajectory odometry_;                 ///< in the odometry's map frame
+  std::vector<std::size_t> keyframes_;  ///< indices into odometry_
+  Eigen::Quaterniond q_world_odom_ = Eigen::Quaterniond::Identity();  ///< the latest
   bool last_is_keyframe_ = false;
 };
 

@@ -77,24 +77,30 @@ int PlaneGraph::addKeyframe(const Pose& T_world_kf) {
   k.q[2] = q.z();
   k.q[3] = q.w();
   for (int i = 0; i < 3; ++i) k.t[i] = T_world_kf.translation()(i);
-  const double tilt = impl_->config.first_tilt_sigma;
-  if (impl_->kfs.empty() && tilt > 0.0) {
-    // Body-frame information: world x/y rotations (tilt) with std `tilt`, yaw held (1e-6 rad).
-    const Eigen::Matrix3d R = T_world_kf.rotationMatrix();
-    const Eigen::Vector3d w(1.0 / (tilt * tilt), 1.0 / (tilt * tilt), 1e12);
-    const Eigen::Matrix3d info = R.transpose() * w.asDiagonal() * R;
-    k.prior.reset(RotationPriorFactor::create(q, sqrtInformation<3>(info)));
-  }
+  const bool first = impl_->kfs.empty();
   impl_->kfs.push_back(std::move(k));
+  if (first) setFirstKeyframeAttitude(q);
   return static_cast<int>(impl_->kfs.size()) - 1;
+}
+
+void PlaneGraph::setFirstKeyframeAttitude(const Eigen::Quaterniond& q_world_kf) {
+  const double tilt = impl_->config.first_tilt_sigma;
+  if (impl_->kfs.empty() || tilt <= 0.0) return;
+  // Body-frame information: world x/y rotations (tilt) with std `tilt`, yaw held (1e-6 rad).
+  const Eigen::Matrix3d R = q_world_kf.toRotationMatrix();
+  const Eigen::Vector3d w(1.0 / (tilt * tilt), 1.0 / (tilt * tilt), 1e12);
+  const Eigen::Matrix3d info = R.transpose() * w.asDiagonal() * R;
+  impl_->kfs.front().prior.reset(
+      RotationPriorFactor::create(q_world_kf.normalized(), sqrtInformation<3>(info)));
 }
 
 void PlaneGraph::addRelativePose(int a, int b, const Pose& T_a_b,
                                  const Eigen::Matrix<double, 6, 6>& information) {
   if (a < 0 || b <= a || b >= keyframes()) throw Error("PlaneGraph: bad relative pose keyframes");
   const int index = static_cast<int>(impl_->edges.size());
-  impl_->edges.push_back({a, b, std::unique_ptr<ceres::CostFunction>(RelativePoseFactor::create(
-                                    T_a_b, sqrtInformation<6>(information)))});
+  impl_->edges.push_back({a, b,
+                          std::unique_ptr<ceres::CostFunction>(
+                              RelativePoseFactor::create(T_a_b, sqrtInformation<6>(information)))});
   impl_->kfs[static_cast<std::size_t>(b)].edges.push_back(index);
   impl_->kfs[static_cast<std::size_t>(a)].edges.push_back(index);
 }
@@ -125,8 +131,8 @@ int PlaneGraph::addObservation(int kf, int plane, const Eigen::Vector3d& n_kf, d
   const Eigen::Matrix3d information = covariance.inverse();
   impl_->observations.push_back(
       {kf, plane,
-       std::unique_ptr<ceres::CostFunction>(
-           PlaneObservationFactor::create(n_kf.normalized(), d_kf, sqrtInformation<3>(information)))});
+       std::unique_ptr<ceres::CostFunction>(PlaneObservationFactor::create(
+           n_kf.normalized(), d_kf, sqrtInformation<3>(information)))});
   impl_->kfs[static_cast<std::size_t>(kf)].observations.push_back(index);
   impl_->planes[static_cast<std::size_t>(plane)].observations.push_back(index);
   return index;
@@ -201,17 +207,25 @@ GraphSolveStats PlaneGraph::optimise(int window, int max_iterations) {
   stats.iterations = static_cast<int>(summary.iterations.size());
   stats.initial_cost = summary.initial_cost;
   stats.final_cost = summary.final_cost;
-  stats.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  stats.ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   return stats;
 }
 
-int PlaneGraph::keyframes() const { return static_cast<int>(impl_->kfs.size()); }
-int PlaneGraph::landmarks() const { return static_cast<int>(impl_->planes.size()); }
-int PlaneGraph::observations() const { return static_cast<int>(impl_->observations.size()); }
+int PlaneGraph::keyframes() const {
+  return static_cast<int>(impl_->kfs.size());
+}
+int PlaneGraph::landmarks() const {
+  return static_cast<int>(impl_->planes.size());
+}
+int PlaneGraph::observations() const {
+  return static_cast<int>(impl_->observations.size());
+}
 
 Pose PlaneGraph::keyframePose(int kf) const {
   const Impl::Keyframe& k = impl_->kfs.at(static_cast<std::size_t>(kf));
-  return Pose(Eigen::Quaterniond(k.q[3], k.q[0], k.q[1], k.q[2]), Eigen::Vector3d(k.t[0], k.t[1], k.t[2]));
+  return Pose(Eigen::Quaterniond(k.q[3], k.q[0], k.q[1], k.q[2]),
+              Eigen::Vector3d(k.t[0], k.t[1], k.t[2]));
 }
 
 PlaneLandmark PlaneGraph::landmark(int plane) const {

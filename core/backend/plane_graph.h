@@ -20,7 +20,7 @@ struct PlaneLandmark {
 };
 
 struct GraphSolveStats {
-  bool full = false;              ///< the whole graph (else the newest keyframes only)
+  bool full = false;  ///< the whole graph (else the newest keyframes only)
   int iterations = 0;
   int free_keyframes = 0, free_planes = 0, residual_blocks = 0;
   double initial_cost = 0.0, final_cost = 0.0;
@@ -36,8 +36,13 @@ class PlaneGraph {
 
   /// Adds a keyframe at its initial estimate; returns its index (the first is fixed).
   int addKeyframe(const Pose& T_world_kf);
+  /// The attitude the first keyframe's roll/pitch prior holds it to (at first
+  /// its initial estimate's); no effect when first_tilt_sigma is 0 or there
+  /// is no keyframe.
+  void setFirstKeyframeAttitude(const Eigen::Quaterniond& q_world_kf);
   /// Odometry constraint T_a_b with its 6x6 information (translation, rotation; frame a).
-  void addRelativePose(int a, int b, const Pose& T_a_b, const Eigen::Matrix<double, 6, 6>& information);
+  void addRelativePose(int a, int b, const Pose& T_a_b,
+                       const Eigen::Matrix<double, 6, 6>& information);
   /// Adds an oriented landmark; a level or plumb prior when config says so.
   int addLandmark(const PlaneLandmark& landmark);
   /// Observation of landmark `plane` by keyframe `kf`: (n_kf, d_kf) oriented like

@@ -53,8 +53,11 @@ struct SrpBackend::Impl {
   std::vector<int> observation_count;    // per landmark
   std::vector<double> observation_chi2;  // after finish()
   // The graph's correction of the odometry as of the last solve:
-  // T_world_lidar = T_world_odom * T_odom_lidar (identity until the first solve).
+  // T_world_lidar = T_world_odom * T_odom_lidar (the odometry's levelling of
+  // its first scan until the first solve).
   Pose T_world_odom;
+  // The odometry's latest levelling of its map frame (its gravity estimate).
+  Eigen::Quaterniond q_world_odom = Eigen::Quaterniond::Identity();
   std::vector<Eigen::Vector3f> last_points;  // the newest scan when it is no keyframe
   Pose last_T_world_lidar;
   BackendStats stats;
@@ -165,6 +168,7 @@ struct SrpBackend::Impl {
     // saw), the whole graph every full_every solves and at the end (then the
     // correction of a revisited plane reaches back over the whole loop).
     const GraphConfig& g = config.graph;
+    levelFirstKeyframe();
     const bool full = window <= 0 || (stats.optimisations % std::max(g.full_every, 1)) == 0;
     if (revisit) ++stats.revisits;
     const backend::GraphSolveStats solve = graph.optimise(full ? 0 : window, g.max_iterations);
@@ -178,6 +182,14 @@ struct SrpBackend::Impl {
     // odometry's poses after it will need it.
     const Pose T_corrected_current = graph.keyframePose(kf_graph) * T_world_lidar.inverse();
     T_world_odom = T_corrected_current * T_world_odom;
+  }
+
+  /// The first keyframe's roll/pitch prior: its odometry attitude levelled by
+  /// the odometry's latest gravity estimate. The relative poses are rigid, so
+  /// a better estimate turns the graph as a whole instead of bending it.
+  void levelFirstKeyframe() {
+    if (kfs.empty()) return;
+    graph.setFirstKeyframeAttitude(q_world_odom * kfs.front().T_odom_lidar.rotation());
   }
 
   /// Final pose of the LiDAR for every scan: the odometry since the keyframe
@@ -211,11 +223,13 @@ struct SrpBackend::Impl {
     return out;
   }
 
-  /// The front end's own trajectory (continuous; what it is on its own).
+  /// The front end's own trajectory (continuous; what it is on its own),
+  /// levelled by its last gravity estimate.
   Trajectory odometry() const {
+    const Pose T_level(q_world_odom, Eigen::Vector3d::Zero());
     Trajectory out;
     out.reserve(scans.size());
-    for (const ScanRecord& s : scans) out.push_back({s.time, s.T_odom_lidar});
+    for (const ScanRecord& s : scans) out.push_back({s.time, T_level * s.T_odom_lidar});
     return out;
   }
 
@@ -265,8 +279,11 @@ SrpBackend::SrpBackend(const BackendConfig& config) : impl_(std::make_unique<Imp
 }
 SrpBackend::~SrpBackend() = default;
 
-BackendDecision SrpBackend::addScan(double time, const Pose& T_odom_lidar, const Scan& deskewed) {
+BackendDecision SrpBackend::addScan(double time, const Pose& T_odom_lidar,
+                                    const Eigen::Quaterniond& q_world_odom, const Scan& deskewed) {
   Impl& m = *impl_;
+  m.q_world_odom = q_world_odom;
+  if (m.scans.empty()) m.T_world_odom = Pose(q_world_odom, Eigen::Vector3d::Zero());
   const Pose T_world_lidar = m.T_world_odom * T_odom_lidar;
   m.scans.push_back({time, T_odom_lidar});
   ++m.stats.scans;
@@ -288,6 +305,7 @@ SlamResult SrpBackend::finish() {
   if (!m.last_points.empty()) m.processKeyframe(m.last_points, m.last_T_world_lidar);
   std::vector<Eigen::Vector3f>().swap(m.last_points);
   const auto t = Clock::now();
+  m.levelFirstKeyframe();
   if (m.config.graph.final_iterations > 0 && m.graph.observations() > 0)
     m.graph.optimise(0, m.config.graph.final_iterations);
   m.stats.ms_final_optimisation = msSince(t);

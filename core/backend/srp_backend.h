@@ -21,10 +21,16 @@ class SrpBackend : public Backend {
   SrpBackend(const SrpBackend&) = delete;
   SrpBackend& operator=(const SrpBackend&) = delete;
 
-  /// `T_odom_lidar`: the odometry's pose (in the odometry's own world frame).
-  /// The decision's pose is it moved by the corrections of the solves so far
-  /// (before this scan's own solve, when it is a keyframe that triggers one).
-  BackendDecision addScan(double time, const Pose& T_odom_lidar, const Scan& deskewed) override;
+  /// `T_odom_lidar`: the odometry's pose (in the odometry's own rigid map
+  /// frame); relative poses come from it. `q_world_odom`: the odometry's
+  /// current levelling of that frame: it starts the graph's world levelled
+  /// and sets the first keyframe's roll/pitch prior at every solve, so a
+  /// better gravity estimate turns the whole graph (docs/method/backend.md).
+  /// The decision's pose is the scan moved by the corrections of the solves
+  /// so far (before this scan's own solve, when it is a keyframe that
+  /// triggers one).
+  BackendDecision addScan(double time, const Pose& T_odom_lidar,
+                          const Eigen::Quaterniond& q_world_odom, const Scan& deskewed) override;
   /// The last scan as a keyframe, the final whole-graph solve and the
   /// wrong-association count. Call once.
   SlamResult finish() override;

@@ -361,11 +361,12 @@ void LidarInertialOdometry::emit(Frame& frame) {
   OdometryResult result;
   result.scan_stamp_ns = frame.scan_stamp_ns;
   result.state = frame.state();
+  result.T_odom_lidar = result.state.T_world_imu * sensor_.T_imu_lidar;
   // Output frame: the map frame levelled by the estimated gravity direction
   // (g_map = Exp([t, 0]) g, so Exp(-[t, 0]) maps it to (0, 0, -|g|)).
-  const Pose T_output_map(
-      Eigen::Quaterniond(so3::expMatrix(-Eigen::Vector3d(tilt_[0], tilt_[1], 0.0))),
-      Eigen::Vector3d::Zero());
+  result.q_world_odom =
+      Eigen::Quaterniond(so3::expMatrix(-Eigen::Vector3d(tilt_[0], tilt_[1], 0.0)));
+  const Pose T_output_map(result.q_world_odom, Eigen::Vector3d::Zero());
   result.state.T_world_imu = T_output_map * result.state.T_world_imu;
   result.state.v_world_imu = T_output_map.rotation() * result.state.v_world_imu;
   result.T_world_lidar = result.state.T_world_imu * sensor_.T_imu_lidar;

@@ -52,8 +52,20 @@ struct OdometryScanStats {
 struct OdometryResult {
   std::int64_t scan_stamp_ns = 0;  ///< the scan's header stamp (LiDAR clock) [ns]
   ImuState state;                  ///< IMU state at the scan's reference time (IMU clock)
-  Pose T_world_lidar;              ///< LiDAR pose at the reference time
-  Scan deskewed;                   ///< the scan's points at the reference time, LiDAR frame
+  /// LiDAR pose at the reference time in the odometry's own map frame: the
+  /// frame its local map is built in, rigid over the whole log. Its z axis is
+  /// the still start's accelerometer-levelled vertical, off the true one by
+  /// the accelerometer bias (|b| / |g|) until turns tell the two apart.
+  Pose T_odom_lidar;
+  /// The current levelling of that frame by the window's gravity estimate
+  /// (world = q_world_odom odom, docs/method/odometry.md "Gravity's
+  /// direction"). It changes as the estimate improves: poses levelled at
+  /// different times are in different frames, so consumers that compose
+  /// poses of different scans use T_odom_lidar and one levelling.
+  Eigen::Quaterniond q_world_odom = Eigen::Quaterniond::Identity();
+  /// q_world_odom * T_odom_lidar: the pose in the levelled world as known now.
+  Pose T_world_lidar;
+  Scan deskewed;  ///< the scan's points at the reference time, LiDAR frame
   OdometryScanStats stats;
 };
 

@@ -13,7 +13,7 @@ void passOn(OdometryResult& scan, Backend& backend, MapScanSelector& map_scans,
             RunReportBuilder& report) {
   report.addScan(scan);
   const BackendDecision decision =
-      backend.addScan(scan.deskewed.time(), scan.T_world_lidar, scan.deskewed);
+      backend.addScan(scan.deskewed.time(), scan.T_odom_lidar, scan.q_world_odom, scan.deskewed);
   map_scans.addScan(std::move(scan.deskewed), decision.T_world_lidar, decision.keyframe);
 }
 
