@@ -12,30 +12,21 @@ namespace storey::backend {
 
 const char* toString(AssociationOutcome outcome) {
   switch (outcome) {
-    case AssociationOutcome::kMatched:
-      return "matched";
-    case AssociationOutcome::kNewPlane:
-      return "new_plane";
-    case AssociationOutcome::kAmbiguous:
-      return "ambiguous";
-    case AssociationOutcome::kNearExisting:
-      return "near_existing_plane";
+    case AssociationOutcome::kMatched: return "matched";
+    case AssociationOutcome::kNewPlane: return "new_plane";
+    case AssociationOutcome::kAmbiguous: return "ambiguous";
+    case AssociationOutcome::kNearExisting: return "near_existing_plane";
   }
   return "unknown";
 }
 
 const char* toString(GateReject reason) {
   switch (reason) {
-    case GateReject::kFacing:
-      return "facing_the_other_way";
-    case GateReject::kAngle:
-      return "angle_gate";
-    case GateReject::kDistance:
-      return "distance_gate";
-    case GateReject::kMahalanobis:
-      return "uncertainty_gate";
-    case GateReject::kCount:
-      break;
+    case GateReject::kFacing: return "facing_the_other_way";
+    case GateReject::kAngle: return "angle_gate";
+    case GateReject::kDistance: return "distance_gate";
+    case GateReject::kMahalanobis: return "uncertainty_gate";
+    case GateReject::kCount: break;
   }
   return "unknown";
 }
@@ -98,7 +89,7 @@ AssociationResult associate(const std::vector<DetectedPlane>& srps,
         near_existing[i] = true;
       if (cos_angle < cos_gate) {
         ++result.gate_rejects[static_cast<std::size_t>(cos_angle < 0.0 ? GateReject::kFacing
-                                                                       : GateReject::kAngle)];
+                                                                         : GateReject::kAngle)];
         continue;
       }
       if (std::abs(dd) > config.distance_gate) {
@@ -162,8 +153,7 @@ AssociationResult associate(const std::vector<DetectedPlane>& srps,
         const int pred = candidates[i][static_cast<std::size_t>(k)].prediction;
         bool used = false;
         for (std::size_t m = 0; m < i; ++m)
-          if (h.choice[m] >= 0 &&
-              candidates[m][static_cast<std::size_t>(h.choice[m])].prediction == pred)
+          if (h.choice[m] >= 0 && candidates[m][static_cast<std::size_t>(h.choice[m])].prediction == pred)
             used = true;
         if (used) continue;
       }
@@ -182,10 +172,10 @@ AssociationResult associate(const std::vector<DetectedPlane>& srps,
     SrpAssociation& out = result.srps[i];
     const int k = best->choice[i];
     if (k < 0) {
-      out.outcome = !candidates[i].empty() || near_existing[i]
-                        ? (candidates[i].empty() ? AssociationOutcome::kNearExisting
-                                                 : AssociationOutcome::kAmbiguous)
-                        : AssociationOutcome::kNewPlane;
+      out.outcome = !candidates[i].empty() || near_existing[i] ? (candidates[i].empty()
+                                                                      ? AssociationOutcome::kNearExisting
+                                                                      : AssociationOutcome::kAmbiguous)
+                                                                : AssociationOutcome::kNewPlane;
       continue;
     }
     const Candidate& c = candidates[i][static_cast<std::size_t>(k)];

@@ -41,9 +41,9 @@ const char* toString(GateReject reason);
 
 struct SrpAssociation {
   AssociationOutcome outcome = AssociationOutcome::kNewPlane;
-  int landmark = -1;   ///< matched landmark (kMatched)
-  double chi2 = 0.0;   ///< Mahalanobis distance of the pair alone (kMatched)
-  int candidates = 0;  ///< landmarks within all gates
+  int landmark = -1;     ///< matched landmark (kMatched)
+  double chi2 = 0.0;     ///< Mahalanobis distance of the pair alone (kMatched)
+  int candidates = 0;    ///< landmarks within all gates
 };
 
 struct AssociationResult {

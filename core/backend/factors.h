@@ -22,8 +22,7 @@ namespace storey::backend {
 ///   r = L^T [ B^T n_kf ; d_kf - d_obs ],
 /// with L L^T the information of the fit in the same coordinates (a1, a2, d).
 struct PlaneObservationFactor {
-  PlaneObservationFactor(const Eigen::Vector3d& n_obs, double d_obs,
-                         const Eigen::Matrix3d& sqrt_information)
+  PlaneObservationFactor(const Eigen::Vector3d& n_obs, double d_obs, const Eigen::Matrix3d& sqrt_information)
       : B_t(tangentBasis(n_obs).transpose()), d_obs(d_obs), sqrt_information(sqrt_information) {}
 
   template <typename T>
@@ -74,8 +73,7 @@ struct RelativePoseFactor {
     return true;
   }
 
-  static ceres::CostFunction* create(const Pose& T_a_b,
-                                     const Eigen::Matrix<double, 6, 6>& sqrt_information) {
+  static ceres::CostFunction* create(const Pose& T_a_b, const Eigen::Matrix<double, 6, 6>& sqrt_information) {
     return new ceres::AutoDiffCostFunction<RelativePoseFactor, 6, 4, 3, 4, 3>(
         new RelativePoseFactor(T_a_b, sqrt_information));
   }
@@ -103,8 +101,7 @@ struct RotationPriorFactor {
     return true;
   }
 
-  static ceres::CostFunction* create(const Eigen::Quaterniond& q0,
-                                     const Eigen::Matrix3d& sqrt_information) {
+  static ceres::CostFunction* create(const Eigen::Quaterniond& q0, const Eigen::Matrix3d& sqrt_information) {
     return new ceres::AutoDiffCostFunction<RotationPriorFactor, 3, 4>(
         new RotationPriorFactor(q0, sqrt_information));
   }
@@ -132,8 +129,7 @@ struct LevelPriorFactor {
   }
 
   static ceres::CostFunction* create(bool level, double sigma) {
-    return new ceres::AutoDiffCostFunction<LevelPriorFactor, 2, 3>(
-        new LevelPriorFactor(level, sigma));
+    return new ceres::AutoDiffCostFunction<LevelPriorFactor, 2, 3>(new LevelPriorFactor(level, sigma));
   }
 
   bool level;

@@ -13,10 +13,8 @@ namespace storey::backend {
 inline Eigen::Matrix<double, 3, 2> tangentBasis(const Eigen::Vector3d& n) {
   Eigen::Vector3d a = Eigen::Vector3d::UnitX();
   const Eigen::Vector3d m = n.cwiseAbs();
-  if (m.y() <= m.x() && m.y() <= m.z())
-    a = Eigen::Vector3d::UnitY();
-  else if (m.z() <= m.x() && m.z() <= m.y())
-    a = Eigen::Vector3d::UnitZ();
+  if (m.y() <= m.x() && m.y() <= m.z()) a = Eigen::Vector3d::UnitY();
+  else if (m.z() <= m.x() && m.z() <= m.y()) a = Eigen::Vector3d::UnitZ();
   Eigen::Matrix<double, 3, 2> B;
   B.col(0) = n.cross(a).normalized();
   B.col(1) = n.cross(B.col(0));

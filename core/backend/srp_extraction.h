@@ -15,10 +15,10 @@ namespace storey::backend {
 
 /// A plane found in a scan, in the scan's (keyframe's LiDAR) frame.
 struct DetectedPlane {
-  Plane plane;          ///< Hesse form, d >= 0: the sensor is on the side opposite n
-  int points = 0;       ///< scan points within ransac_distance of the plane
-  double rms = 0.0;     ///< RMS point-to-plane distance of those points [m]
-  double extent = 0.0;  ///< 4 std of the inliers along their second axis [m]
+  Plane plane;                  ///< Hesse form, d >= 0: the sensor is on the side opposite n
+  int points = 0;               ///< scan points within ransac_distance of the plane
+  double rms = 0.0;             ///< RMS point-to-plane distance of those points [m]
+  double extent = 0.0;          ///< 4 std of the inliers along their second axis [m]
   Eigen::Vector3d centroid = Eigen::Vector3d::Zero();  ///< of the inliers [m]
   /// Outline: convex hull of the inliers on the plane (backend/plane_hull.h);
   /// filled for the planes that pass the size rules (SRP candidates) [m].
@@ -29,14 +29,7 @@ struct DetectedPlane {
 };
 
 /// Why a detected plane did not become an SRP.
-enum class PlaneReject {
-  kTooFewPoints,
-  kTooSmall,
-  kEdgeOn,
-  kNotOrthogonal,
-  kBeyondMaxSrps,
-  kCount
-};
+enum class PlaneReject { kTooFewPoints, kTooSmall, kEdgeOn, kNotOrthogonal, kBeyondMaxSrps, kCount };
 const char* toString(PlaneReject reason);
 
 struct SrpExtractionResult {
@@ -55,7 +48,6 @@ SrpExtractionResult extractSrps(const std::vector<Eigen::Vector3f>& points,
 /// Fits a plane to points by least squares (PCA) and fills points, rms,
 /// extent, centroid and covariance (point noise max(rms, point_sigma), at most
 /// max_effective_points counted as independent). Needs >= 3 points.
-DetectedPlane fitPlane(const std::vector<Eigen::Vector3d>& inliers,
-                       const SrpExtractionConfig& config);
+DetectedPlane fitPlane(const std::vector<Eigen::Vector3d>& inliers, const SrpExtractionConfig& config);
 
 }  // namespace storey::backend
