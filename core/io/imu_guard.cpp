@@ -16,6 +16,7 @@ constexpr std::size_t kOcclusionHistory = 50;  // scans in the usual count's med
 constexpr std::size_t kOcclusionMinHistory = 10;
 constexpr std::int64_t kOcclusionMinUsual = 100;  // fewer usual points: no check
 constexpr std::int64_t kOcclusionRelearnNs = 5'000'000'000;
+constexpr double kOcclusionSkipFraction = 0.1;  // less of the usual left: skip the scan
 
 /// Channel c of a sample: gyro x y z (0-2), accel x y z (3-5).
 double channel(const ImuSample& s, int c) {
@@ -98,7 +99,7 @@ void GuardedLogReader::onScan(Scan&& scan) {
     }
   }
   last_scan_ns_ = scan.stamp_ns;
-  if (!checkOcclusion(scan)) return;
+  if (!checkOcclusion(scan)) return;  // too little left to register
   if (run_samples_ > 0) {
     run_.emplace_back(std::move(scan));
   } else {
@@ -114,7 +115,7 @@ void GuardedLogReader::queueScan(Scan&& scan) {
   }
 }
 
-bool GuardedLogReader::checkOcclusion(const Scan& scan) {
+bool GuardedLogReader::checkOcclusion(Scan& scan) {
   if (occlusion_fraction_ <= 0.0) return true;
   std::int64_t far = 0;
   for (const ScanPoint& p : scan.points)
@@ -131,15 +132,27 @@ bool GuardedLogReader::checkOcclusion(const Scan& scan) {
     const std::int64_t usual = *mid;
     if (usual >= kOcclusionMinUsual &&
         static_cast<double>(far) < occlusion_fraction_ * static_cast<double>(usual)) {
-      if (!occlusion_) occlusion_ = Occlusion{scan.stamp_ns, scan.stamp_ns, 0, 0.0};
+      if (!occlusion_) occlusion_ = Occlusion{scan.stamp_ns, scan.stamp_ns, 0, 0, 0.0};
       occlusion_->last_ns = scan.stamp_ns;
       ++occlusion_->scans;
-      occlusion_->fraction_sum += static_cast<double>(far) / static_cast<double>(usual);
-      return false;
+      const double fraction = static_cast<double>(far) / static_cast<double>(usual);
+      occlusion_->fraction_sum += fraction;
+      if (fraction < kOcclusionSkipFraction) {
+        ++occlusion_->skipped;
+        return false;
+      }
+      // What is in front of the sensor goes; what lies beyond it is registered.
+      scan.points.erase(std::remove_if(scan.points.begin(), scan.points.end(),
+                                       [](const ScanPoint& p) {
+                                         return p.p.squaredNorm() <=
+                                                kOcclusionNear * kOcclusionNear;
+                                       }),
+                        scan.points.end());
+      return true;
     }
   }
   if (occlusion_) endOcclusion(scan.stamp_ns);
-  far_counts_.push_back(far);
+  far_counts_.push_back(far);  // only clear scans make the usual count
   if (far_counts_.size() > kOcclusionHistory) far_counts_.pop_front();
   return true;
 }
@@ -152,10 +165,12 @@ void GuardedLogReader::endOcclusion(std::int64_t end_ns) {
               {sinceStart(o.first_ns), duration,
                std::to_string(o.scans) + (o.scans == 1 ? " scan" : " scans") + " with " +
                    fixed(100.0 * o.fraction_sum / static_cast<double>(o.scans), 0) +
-                   " % of the usual points beyond 0.5 m, " + fixed(duration, 2) + " s"},
+                   " % of the usual points beyond 0.5 m, " + fixed(duration, 2) + " s, " +
+                   std::to_string(o.skipped) + " skipped"},
               "LiDAR occluded",
-              "those scans are neither registered nor added to the map (the IMU carries the "
-              "motion across them)");
+              "the points within 0.5 m of the sensor are removed from those scans and the rest "
+              "registered; a scan with less than 10 % of the usual points left is skipped (the "
+              "IMU carries the motion across it)");
 }
 
 void GuardedLogReader::reportClockJumps() {

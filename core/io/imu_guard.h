@@ -16,13 +16,14 @@
 ///   from zero (the sensor clipped at its range). The run is removed and the
 ///   sample after it marked ImuSample::after_removed: the IMU factor across
 ///   it gets the uncertainty of unknown motion, as across a dropout.
-/// - LiDAR occlusion: a scan with fewer points beyond 1 m than
+/// - LiDAR occlusion: a scan with fewer points beyond 0.5 m than
 ///   input.lidar_occlusion_fraction of the median of the last 50 scans that
-///   were not occluded (a person in front of the sensor). It is not passed
-///   on (neither registered nor mapped: the IMU carries the motion across
-///   it); consecutive ones are one event. After 5 s of occlusion the usual
-///   count is learnt again, so a lasting change of scene does not end the
-///   mapping.
+///   were not occluded (a person in front of the sensor). Its points within
+///   0.5 m (the body) are removed, so they neither enter the map nor pull
+///   the registration; with less than 10 % of the usual points left the scan
+///   is not passed on at all (the IMU carries the motion across it).
+///   Consecutive ones are one event. After 5 s of occlusion the usual count
+///   is learnt again, so a lasting change of scene is not an occlusion.
 /// - a clock jump found by the reader's sequencer (LogReadStats::clock_jumps,
 ///   io/message_sequencer.h), reported as it appears.
 /// Each becomes a FaultLog event; messages pass on in the same order.
@@ -58,8 +59,9 @@ class GuardedLogReader : public LogReader {
   /// Ends the candidate run before `next` (nullptr: the end of the log).
   void endRun(const ImuSample* next);
   void onScan(Scan&& scan);
-  /// The occlusion check; false: `scan` is occluded.
-  bool checkOcclusion(const Scan& scan);
+  /// The occlusion check: removes the near points of an occluded scan;
+  /// false: too little is left, the scan is skipped.
+  bool checkOcclusion(Scan& scan);
   void endOcclusion(std::int64_t end_ns);
   /// Queues a scan behind the samples held back.
   void queueScan(Scan&& scan);
@@ -87,11 +89,12 @@ class GuardedLogReader : public LogReader {
   std::size_t run_samples_ = 0;
   unsigned run_channels_ = 0;   ///< bit c: channel c (gyro x y z, accel x y z) stuck
   bool after_removed_ = false;  ///< the next sample follows a removed run
-  // Occlusion: points beyond 1 m of the last unoccluded scans; the open event.
+  // Occlusion: points beyond 0.5 m of the last clear scans; the open event.
   std::deque<std::int64_t> far_counts_;
   struct Occlusion {
     std::int64_t first_ns = 0, last_ns = 0;
     std::int64_t scans = 0;
+    std::int64_t skipped = 0;   ///< with too little left to register
     double fraction_sum = 0.0;  ///< of the scans' far points over the median
   };
   std::optional<Occlusion> occlusion_;

@@ -36,9 +36,10 @@ struct InputConfig {
   double imu_saturation_gyro = 4.0;
   /// The same for the specific force [m/s^2] (19: below 2 g); 0 = off.
   double imu_saturation_accel = 19.0;
-  /// A scan with fewer points beyond 1 m than this fraction of the median of
-  /// the last 50 scans that were not is occluded (a person in front of the
-  /// sensor): it is neither registered nor mapped; 0 = off [-].
+  /// A scan with fewer points beyond 0.5 m than this fraction of the median
+  /// of the last 50 clear scans is occluded (a person in front of the
+  /// sensor): its points within 0.5 m are removed, and with less than 10 %
+  /// of the usual left it is skipped; 0 = off [-].
   double lidar_occlusion_fraction = 0.4;
 
   /// Checks value ranges; throws storey::Error naming the key (under `input.`) at fault.

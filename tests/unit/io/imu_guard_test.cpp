@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdint>
 #include <functional>
+#include <utility>
 #include <vector>
 
 namespace storey {
@@ -274,45 +275,68 @@ std::vector<LogMessage> occludedLog(double end, double from, double to, int far)
   return out;
 }
 
-std::vector<double> scanTimes(const std::vector<LogMessage>& messages) {
-  std::vector<double> times;
+/// Time [s since the start] and point count of each scan passed on.
+std::vector<std::pair<double, std::size_t>> scansOut(const std::vector<LogMessage>& messages) {
+  std::vector<std::pair<double, std::size_t>> scans;
   for (const LogMessage& m : messages)
-    if (const auto* s = std::get_if<Scan>(&m)) times.push_back(nsToSeconds(s->stamp_ns - kStart));
-  return times;
+    if (const auto* s = std::get_if<Scan>(&m))
+      scans.emplace_back(nsToSeconds(s->stamp_ns - kStart), s->points.size());
+  return scans;
 }
 
-TEST(ImuGuard, OccludedScansAreHeldBackAndCountedAsOneEvent) {
-  // 2.05 to 3.95 s: 20 scans with 250 of the usual ~1000 points beyond 0.5 m.
+TEST(ImuGuard, OccludedScansLoseTheirNearPointsAndCountAsOneEvent) {
+  // 2.05 to 3.95 s: 20 scans with 250 of the usual ~1000 points beyond 0.5 m
+  // and 700 at 0.35 m (a body): passed on with the 250 only.
   Guarded g(occludedLog(6.0, 2.0, 4.0, 250));
   ASSERT_EQ(g.faults.count(kFaultLidarOccluded), 1);
   const FaultEvent& e = g.faults.kinds().at(kFaultLidarOccluded).first[0];
   EXPECT_NEAR(e.time, 2.05, 1e-9);
   EXPECT_NEAR(e.duration, 2.0, 1e-9);  // to the next clear scan
-  EXPECT_NE(e.detail.find("20 scans"), std::string::npos) << e.detail;
-  const std::vector<double> times = scanTimes(g.out);
-  EXPECT_EQ(times.size(), 60u - 20u);
-  for (double t : times) EXPECT_FALSE(t > 2.0 && t < 4.0) << t;
-  // 600 of ~1000 (above 40 %) is not an occlusion; with the check off nothing is held back.
+  EXPECT_NE(e.detail.find("20 scans with 25 % of the usual points"), std::string::npos) << e.detail;
+  EXPECT_NE(e.detail.find("0 skipped"), std::string::npos) << e.detail;
+  const auto scans = scansOut(g.out);
+  ASSERT_EQ(scans.size(), 60u);
+  for (const auto& [t, points] : scans) {
+    if (t > 2.0 && t < 4.0) {
+      EXPECT_EQ(points, 250u) << t;
+    } else {
+      EXPECT_GE(points, 960u) << t;
+    }
+  }
+  // 50 left (5 %): too little to register, those scans are skipped.
+  Guarded blind(occludedLog(6.0, 2.0, 4.0, 50));
+  ASSERT_EQ(blind.faults.count(kFaultLidarOccluded), 1);
+  EXPECT_NE(blind.faults.kinds().at(kFaultLidarOccluded).first[0].detail.find("20 skipped"),
+            std::string::npos);
+  EXPECT_EQ(scansOut(blind.out).size(), 40u);
+  // 600 of ~1000 (above 40 %) is not an occlusion; with the check off nothing changes.
   EXPECT_EQ(Guarded(occludedLog(6.0, 2.0, 4.0, 600)).faults.count(kFaultLidarOccluded), 0);
   InputConfig off;
   off.lidar_occlusion_fraction = 0.0;
-  Guarded unchecked(occludedLog(6.0, 2.0, 4.0, 250), off);
+  Guarded unchecked(occludedLog(6.0, 2.0, 4.0, 50), off);
   EXPECT_EQ(unchecked.faults.count(kFaultLidarOccluded), 0);
-  EXPECT_EQ(scanTimes(unchecked.out).size(), 60u);
+  const auto all = scansOut(unchecked.out);
+  ASSERT_EQ(all.size(), 60u);
+  EXPECT_EQ(all[25].second, 750u);  // 2.55 s: 50 + 700
 }
 
 TEST(ImuGuard, ALastingDropInPointsIsLearntAfterFiveSeconds) {
   // From 2 s to the end (10 s) a quarter of the points: occluded for 5 s,
-  // then the new count is the usual one and the scans are passed on again.
+  // then the new count is the usual one and the scans are passed on whole.
   Guarded g(occludedLog(10.0, 2.0, 11.0, 250));
   ASSERT_EQ(g.faults.count(kFaultLidarOccluded), 1);
   const FaultEvent& e = g.faults.kinds().at(kFaultLidarOccluded).first[0];
   EXPECT_NEAR(e.time, 2.05, 1e-9);
   EXPECT_NEAR(e.duration, 5.1, 1e-9);
-  const std::vector<double> times = scanTimes(g.out);
-  ASSERT_FALSE(times.empty());
-  EXPECT_NEAR(times.back(), 9.95, 1e-9);
-  EXPECT_EQ(times.size(), 20u + 29u);  // 0.05-1.95 s and 7.15-9.95 s
+  const auto scans = scansOut(g.out);
+  ASSERT_EQ(scans.size(), 100u);
+  for (const auto& [t, points] : scans) {
+    if (t > 2.0 && t < 7.1) {
+      EXPECT_EQ(points, 250u) << t;
+    } else if (t > 7.1) {
+      EXPECT_EQ(points, 950u) << t;
+    }
+  }
 }
 
 TEST(ImuGuard, TheReadersClockJumpsAreReported) {
