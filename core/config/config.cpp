@@ -32,6 +32,9 @@ void visitInput(V& v, InputConfig& c) {
   v.field("pcap_position_port", c.pcap_position_port);
   v.field("imu_spike_gyro", c.imu_spike_gyro);
   v.field("imu_spike_accel", c.imu_spike_accel);
+  v.field("imu_saturation_gyro", c.imu_saturation_gyro);
+  v.field("imu_saturation_accel", c.imu_saturation_accel);
+  v.field("lidar_occlusion_fraction", c.lidar_occlusion_fraction);
 }
 
 template <typename V>

@@ -140,7 +140,7 @@ void ImuPreintegration::integrate() {
     //   P' = A P A^T + (A C) B^T + B (A C)^T + B (S + Qwhite) B^T,  C' = A C + B S.
     Eigen::Matrix<double, 6, 1> q_white;
     q_white << sg2 / dt, sg2 / dt, sg2 / dt, sa2 / dt, sa2 / dt, sa2 / dt;
-    if (k1.sample_spacing > gap_threshold) {
+    if (k1.sample_spacing > gap_threshold || k1.after_removed) {
       // A dropout: the signal here is an interpolation, its mean over the
       // step unknown to dropout_*_sigma (docs/method/imu.md, "Dropouts").
       q_white.head<3>().array() += dg2;

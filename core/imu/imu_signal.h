@@ -22,6 +22,9 @@ struct ImuKnot {
   /// previous knot to this one lies (that interval's length unless an end
   /// was interpolated; 0 for the first knot) [s]: a dropout when long.
   double sample_spacing = 0.0;
+  /// Samples between those two were removed (ImuSample::after_removed): a
+  /// dropout whatever sample_spacing.
+  bool after_removed = false;
 };
 
 struct ImuSignal {

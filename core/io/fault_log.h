@@ -13,11 +13,15 @@ namespace storey {
 inline constexpr const char* kFaultImuSpike = "imu_spike";
 inline constexpr const char* kFaultImuGap = "imu_gap";
 inline constexpr const char* kFaultLidarGap = "lidar_gap";
+inline constexpr const char* kFaultImuSaturation = "imu_saturation";
+inline constexpr const char* kFaultLidarOccluded = "lidar_occluded";
+inline constexpr const char* kFaultClockJump = "clock_jump";
 
 struct FaultEvent {
-  double time = 0.0;      ///< since the log's first message [s]
-  double duration = 0.0;  ///< gaps: the time without data [s]; 0 otherwise
-  std::string detail;     ///< what was seen, for the warning and the report
+  double time = 0.0;  ///< since the log's first message [s]
+  double duration =
+      0.0;  ///< gaps, saturation, occlusion: the time without usable data [s]; 0 otherwise
+  std::string detail;  ///< what was seen, for the warning and the report
 };
 
 struct FaultKindSummary {

@@ -1,6 +1,7 @@
 #include "io/imu_guard.h"
 
 #include <algorithm>
+#include <cmath>
 #include <iomanip>
 #include <sstream>
 
@@ -9,6 +10,18 @@ namespace {
 
 constexpr std::size_t kScanIntervalsForPeriod = 20;
 constexpr double kScanGapPeriods = 2.5;
+constexpr std::size_t kSaturatedRun = 3;       // samples stuck at one value
+constexpr float kOcclusionNear = 0.5f;         // points nearer do not count [m]
+constexpr std::size_t kOcclusionHistory = 50;  // scans in the usual count's median
+constexpr std::size_t kOcclusionMinHistory = 10;
+constexpr std::int64_t kOcclusionMinUsual = 100;  // fewer usual points: no check
+constexpr std::int64_t kOcclusionRelearnNs = 5'000'000'000;
+constexpr double kOcclusionSkipFraction = 0.1;  // less of the usual left: skip the scan
+
+/// Channel c of a sample: gyro x y z (0-2), accel x y z (3-5).
+double channel(const ImuSample& s, int c) {
+  return c < 3 ? s.gyro[c] : s.accel[c - 3];
+}
 
 std::int64_t stampOf(const LogMessage& m) {
   return std::holds_alternative<Scan>(m) ? std::get<Scan>(m).stamp_ns
@@ -28,6 +41,9 @@ GuardedLogReader::GuardedLogReader(std::unique_ptr<LogReader> inner, const Input
     : inner_(std::move(inner)),
       spike_gyro_(input.imu_spike_gyro),
       spike_accel_(input.imu_spike_accel),
+      saturation_gyro_(input.imu_saturation_gyro),
+      saturation_accel_(input.imu_saturation_accel),
+      occlusion_fraction_(input.lidar_occlusion_fraction),
       gap_ns_(secondsToNs(imuGapThreshold(imu))),
       faults_(faults) {}
 
@@ -40,10 +56,14 @@ bool GuardedLogReader::next(LogMessage& message) {
     LogMessage in;
     if (!inner_->next(in)) {
       ended_ = true;
+      reportClockJumps();
+      endRun(nullptr);
+      if (occlusion_) endOcclusion(occlusion_->last_ns + scan_period_ns_);
       release();  // the last sample has no right neighbour: it stays as it is
       break;
     }
     if (!first_ns_) first_ns_ = stampOf(in);
+    reportClockJumps();
     if (auto* scan = std::get_if<Scan>(&in)) {
       onScan(std::move(*scan));
     } else {
@@ -79,6 +99,15 @@ void GuardedLogReader::onScan(Scan&& scan) {
     }
   }
   last_scan_ns_ = scan.stamp_ns;
+  if (!checkOcclusion(scan)) return;  // too little left to register
+  if (run_samples_ > 0) {
+    run_.emplace_back(std::move(scan));
+  } else {
+    queueScan(std::move(scan));
+  }
+}
+
+void GuardedLogReader::queueScan(Scan&& scan) {
   if (held_) {
     after_held_.push_back(std::move(scan));
   } else {
@@ -86,9 +115,164 @@ void GuardedLogReader::onScan(Scan&& scan) {
   }
 }
 
+bool GuardedLogReader::checkOcclusion(Scan& scan) {
+  if (occlusion_fraction_ <= 0.0) return true;
+  std::int64_t far = 0;
+  for (const ScanPoint& p : scan.points)
+    if (p.p.squaredNorm() > kOcclusionNear * kOcclusionNear) ++far;
+  if (occlusion_ && scan.stamp_ns - occlusion_->first_ns > kOcclusionRelearnNs) {
+    // Occluded for too long to be a passer-by: a new scene; learn its count.
+    endOcclusion(scan.stamp_ns);
+    far_counts_.clear();
+  }
+  if (far_counts_.size() >= kOcclusionMinHistory) {
+    std::vector<std::int64_t> counts(far_counts_.begin(), far_counts_.end());
+    auto mid = counts.begin() + static_cast<std::ptrdiff_t>(counts.size() / 2);
+    std::nth_element(counts.begin(), mid, counts.end());
+    const std::int64_t usual = *mid;
+    if (usual >= kOcclusionMinUsual &&
+        static_cast<double>(far) < occlusion_fraction_ * static_cast<double>(usual)) {
+      if (!occlusion_) occlusion_ = Occlusion{scan.stamp_ns, scan.stamp_ns, 0, 0, 0.0};
+      occlusion_->last_ns = scan.stamp_ns;
+      ++occlusion_->scans;
+      const double fraction = static_cast<double>(far) / static_cast<double>(usual);
+      occlusion_->fraction_sum += fraction;
+      if (fraction < kOcclusionSkipFraction) {
+        ++occlusion_->skipped;
+        return false;
+      }
+      // What is in front of the sensor goes; what lies beyond it is registered.
+      scan.points.erase(std::remove_if(scan.points.begin(), scan.points.end(),
+                                       [](const ScanPoint& p) {
+                                         return p.p.squaredNorm() <=
+                                                kOcclusionNear * kOcclusionNear;
+                                       }),
+                        scan.points.end());
+      return true;
+    }
+  }
+  if (occlusion_) endOcclusion(scan.stamp_ns);
+  far_counts_.push_back(far);  // only clear scans make the usual count
+  if (far_counts_.size() > kOcclusionHistory) far_counts_.pop_front();
+  return true;
+}
+
+void GuardedLogReader::endOcclusion(std::int64_t end_ns) {
+  const Occlusion o = *occlusion_;
+  occlusion_.reset();
+  const double duration = nsToSeconds(end_ns - o.first_ns);
+  faults_.add(kFaultLidarOccluded,
+              {sinceStart(o.first_ns), duration,
+               std::to_string(o.scans) + (o.scans == 1 ? " scan" : " scans") + " with " +
+                   fixed(100.0 * o.fraction_sum / static_cast<double>(o.scans), 0) +
+                   " % of the usual points beyond 0.5 m, " + fixed(duration, 2) + " s, " +
+                   std::to_string(o.skipped) + " skipped"},
+              "LiDAR occluded",
+              "the points within 0.5 m of the sensor are removed from those scans and the rest "
+              "registered; a scan with less than 10 % of the usual points left is skipped (the "
+              "IMU carries the motion across it)");
+}
+
+void GuardedLogReader::reportClockJumps() {
+  const std::vector<ClockJump>& jumps = inner_->stats().clock_jumps;
+  for (; clock_jumps_reported_ < jumps.size(); ++clock_jumps_reported_) {
+    const ClockJump& j = jumps[clock_jumps_reported_];
+    const double step = nsToSeconds(j.step_ns);
+    faults_.add(kFaultClockJump,
+                {sinceStart(j.stamp_ns), 0.0,
+                 std::string(j.imu ? "IMU" : "LiDAR") + " stamps jumped by " +
+                     (step >= 0.0 ? "+" : "") + fixed(step, 3) + " s"},
+                "clock jump",
+                std::string("the ") + (j.imu ? "IMU" : "LiDAR") +
+                    " stamps after it are moved back onto the other stream's clock by the step");
+  }
+}
+
 void GuardedLogReader::onImu(const ImuSample& sample) {
+  const auto stuck = [&](int c, double value) {
+    const double limit = c < 3 ? saturation_gyro_ : saturation_accel_;
+    return limit > 0.0 && std::abs(value) >= limit;
+  };
+  if (run_samples_ > 0) {
+    const ImuSample& last =
+        std::get<ImuSample>(*std::find_if(run_.rbegin(), run_.rend(), [](const LogMessage& m) {
+          return !std::holds_alternative<Scan>(m);
+        }));
+    unsigned still = 0;
+    for (int c = 0; c < 6; ++c)
+      if ((run_channels_ >> c & 1u) && channel(sample, c) == channel(last, c)) still |= 1u << c;
+    if (still != 0) {
+      run_channels_ = still;
+      run_.emplace_back(sample);
+      ++run_samples_;
+      return;
+    }
+    endRun(&sample);
+  }
+  unsigned extreme = 0;
+  for (int c = 0; c < 6; ++c)
+    if (stuck(c, channel(sample, c))) extreme |= 1u << c;
+  if (extreme != 0) {
+    run_channels_ = extreme;
+    run_.emplace_back(sample);
+    run_samples_ = 1;
+    return;
+  }
+  judgeImu(sample);
+}
+
+void GuardedLogReader::endRun(const ImuSample* next) {
+  if (run_samples_ == 0) return;
+  std::deque<LogMessage> run;
+  run.swap(run_);
+  const std::size_t samples = run_samples_;
+  run_samples_ = 0;
+  if (samples < kSaturatedRun) {
+    // Not saturation: the samples go on to the other checks.
+    for (LogMessage& m : run) {
+      if (auto* scan = std::get_if<Scan>(&m)) {
+        queueScan(std::move(*scan));
+      } else {
+        judgeImu(std::get<ImuSample>(m));
+      }
+    }
+    return;
+  }
+  const ImuSample* first = nullptr;
+  const ImuSample* last = nullptr;
+  for (const LogMessage& m : run) {
+    if (const auto* s = std::get_if<ImuSample>(&m)) {
+      if (!first) first = s;
+      last = s;
+    }
+  }
+  int axis = 0;
+  while (!(run_channels_ >> axis & 1u)) ++axis;
+  const std::int64_t end_ns = next ? next->stamp_ns : last->stamp_ns;
+  const double duration = nsToSeconds(end_ns - first->stamp_ns);
+  static const char* const kAxes[6] = {"gyro x",  "gyro y",  "gyro z",
+                                       "accel x", "accel y", "accel z"};
+  faults_.add(kFaultImuSaturation,
+              {sinceStart(first->stamp_ns), duration,
+               std::to_string(samples) + " samples stuck at " + kAxes[axis] + " " +
+                   fixed(channel(*first, axis), 1) + (axis < 3 ? " rad/s" : " m/s^2") + ", " +
+                   fixed(duration, 3) + " s"},
+              "IMU saturation",
+              "the samples are removed and the IMU factor across them gets the uncertainty of "
+              "unknown motion");
+  after_removed_ = true;
+  for (LogMessage& m : run)
+    if (auto* scan = std::get_if<Scan>(&m)) queueScan(std::move(*scan));
+}
+
+void GuardedLogReader::judgeImu(const ImuSample& in) {
+  ImuSample sample = in;
+  if (after_removed_) {
+    sample.after_removed = true;
+    after_removed_ = false;
+  }
   const ImuSample* newest = held_ ? &*held_ : before_ ? &*before_ : nullptr;
-  if (newest && sample.stamp_ns - newest->stamp_ns > gap_ns_) {
+  if (newest && sample.stamp_ns - newest->stamp_ns > gap_ns_ && !sample.after_removed) {
     const double gap = nsToSeconds(sample.stamp_ns - newest->stamp_ns);
     faults_.add(kFaultImuGap,
                 {sinceStart(newest->stamp_ns), gap, fixed(gap, 3) + " s without IMU samples"},
@@ -96,7 +280,8 @@ void GuardedLogReader::onImu(const ImuSample& sample) {
                 "its motion is left to the LiDAR (the IMU factor across it is given the "
                 "uncertainty of unknown motion)");
   }
-  if (held_ && before_ && sample.stamp_ns - before_->stamp_ns <= gap_ns_) {
+  if (held_ && before_ && sample.stamp_ns - before_->stamp_ns <= gap_ns_ && !sample.after_removed &&
+      !held_->after_removed) {
     // Judge the held sample b between a = before_ and c = sample.
     ImuSample& b = *held_;
     const ImuSample& a = *before_;

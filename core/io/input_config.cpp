@@ -20,6 +20,10 @@ void InputConfig::validate() const {
              "must be a UDP port (0 = any)");
   requireKey(imu_spike_gyro >= 0.0, "input.imu_spike_gyro", "must be >= 0 (0 = off)");
   requireKey(imu_spike_accel >= 0.0, "input.imu_spike_accel", "must be >= 0 (0 = off)");
+  requireKey(imu_saturation_gyro >= 0.0, "input.imu_saturation_gyro", "must be >= 0 (0 = off)");
+  requireKey(imu_saturation_accel >= 0.0, "input.imu_saturation_accel", "must be >= 0 (0 = off)");
+  requireKey(lidar_occlusion_fraction >= 0.0 && lidar_occlusion_fraction < 1.0,
+             "input.lidar_occlusion_fraction", "must be in [0, 1) (0 = off)");
 }
 
 }  // namespace storey

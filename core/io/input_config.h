@@ -28,6 +28,19 @@ struct InputConfig {
   double imu_spike_gyro = 10.0;
   /// The same for the specific force [m/s^2] (60: about 6 g); 0 = off.
   double imu_spike_accel = 60.0;
+  /// At least three consecutive IMU samples holding the same value on one
+  /// gyro axis, at least this far from zero, are a saturated run (the sensor
+  /// clipped at its range): removed, the IMU factor across it gets the
+  /// uncertainty of unknown motion; 0 = off [rad/s] (4: below the smallest
+  /// common range, 250 deg/s).
+  double imu_saturation_gyro = 4.0;
+  /// The same for the specific force [m/s^2] (19: below 2 g); 0 = off.
+  double imu_saturation_accel = 19.0;
+  /// A scan with fewer points beyond 0.5 m than this fraction of the median
+  /// of the last 50 clear scans is occluded (a person in front of the
+  /// sensor): its points within 0.5 m are removed, and with less than 10 %
+  /// of the usual left it is skipped; 0 = off [-].
+  double lidar_occlusion_fraction = 0.4;
 
   /// Checks value ranges; throws storey::Error naming the key (under `input.`) at fault.
   void validate() const;

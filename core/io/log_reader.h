@@ -6,6 +6,7 @@
 #include <memory>
 #include <string>
 #include <variant>
+#include <vector>
 
 #include "io/input_config.h"
 #include "types/imu_sample.h"
@@ -16,12 +17,21 @@ namespace storey {
 
 using LogMessage = std::variant<Scan, ImuSample>;
 
+/// A step in one stream's stamps that the other stream did not make
+/// (io/message_sequencer.h); the stream's later stamps are moved back by it.
+struct ClockJump {
+  bool imu = false;           ///< the IMU stream jumped (else the LiDAR's)
+  std::int64_t stamp_ns = 0;  ///< the first message after it, re-aligned [ns]
+  std::int64_t step_ns = 0;   ///< how far its stamps jumped [ns]
+};
+
 /// What a reader skipped or repaired, with the reason; shown in the run report.
 struct LogReadStats {
   std::int64_t scans = 0;                       ///< scans delivered
   std::int64_t imu_samples = 0;                 ///< IMU samples delivered
   std::int64_t points = 0;                      ///< points delivered
   std::map<std::string, std::int64_t> dropped;  ///< reason -> count (points or messages)
+  std::vector<ClockJump> clock_jumps;           ///< in the order found
 };
 
 class LogReader {

@@ -7,8 +7,25 @@
 /// offset (the scan keeps its own stamp); at equal keys IMU samples come first.
 /// A message is released once a message keyed `window` later has been pushed,
 /// when the buffer is full, or at the end of the input.
+///
+/// Clock jumps: once a stream's nominal period is known (the median of its
+/// first 20 intervals), a message whose stamp is more than kClockJumpNs off
+/// the next expected one (the stream's previous stamp + one period) while its
+/// lead over the other stream's newest stamp changed by about as much (within
+/// kClockJumpNs / 2: in a gap of one stream the other goes on, so the lead
+/// stays) is held with the messages of its stream after it until the other
+/// stream's next message and its own next one. If the other did not step
+/// too (it is within half the step + its period of its previous one: not a
+/// pause of both) and the stream goes on from the new stamp (within
+/// kClockJumpNs / 2 of one period: not one garbled stamp), its clock jumped: its stamps from there
+/// on are moved by minus the step (the jump minus one period) and the jump is recorded in
+/// LogReadStats::clock_jumps. Otherwise the held messages go on as they were.
+/// A forward jump is only told from a gap where the log is in record order
+/// (bags); where the streams are merged by stamp (PCD folder + IMU CSV) it
+/// is a gap.
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "io/log_reader.h"
@@ -27,6 +44,9 @@ inline constexpr const char* kDropScanLate = "scan_later_than_reorder_window";
 
 class MessageSequencer {
  public:
+  /// Smallest step of a stream's stamps taken for a clock jump [ns].
+  static constexpr std::int64_t kClockJumpNs = 400'000'000;
+
   struct Options {
     std::int64_t lidar_to_imu_offset_ns = 0;  ///< t_imu = t_lidar + offset [ns]
     std::int64_t window_ns = 1'000'000'000;   ///< reorder window [ns]
@@ -39,7 +59,7 @@ class MessageSequencer {
   void push(Scan&& scan);
   void push(const ImuSample& imu);
   /// No more input: everything buffered becomes ready.
-  void finish() { finished_ = true; }
+  void finish();
   /// Takes the next message in time order if one is ready.
   bool pop(LogMessage& message);
 
@@ -53,6 +73,26 @@ class MessageSequencer {
     LogMessage message;
   };
   void insert(std::int64_t key_ns, int kind, LogMessage&& message);
+  /// One stream's stamps: the newest accepted, the shift applied to the rest
+  /// after a clock jump, its nominal period, its lead over the other stream.
+  struct Stream {
+    bool have = false;
+    std::int64_t last_ns = 0;   ///< newest accepted stamp (shifted)
+    std::int64_t shift_ns = 0;  ///< added to the stamps read
+    std::vector<std::int64_t> intervals;
+    std::int64_t period_ns = 0;  ///< 0 until known
+    bool have_lead = false;
+    std::int64_t lead_ns = 0;  ///< last_ns - the other stream's last_ns then
+  };
+  /// The clock-jump check, then accept().
+  void route(LogMessage&& message);
+  /// The order and window checks of one message (stamp shifted), then insert().
+  void accept(LogMessage&& message);
+  /// Ends the hold of a suspected jump: `jumped` moves the held stream's clock.
+  void resolve(bool jumped);
+  void acceptScan(Scan&& scan);
+  void acceptImu(const ImuSample& imu);
+  void noteStamp(int kind, std::int64_t stamp_ns);
 
   Options options_;
   LogReadStats& stats_;
@@ -61,10 +101,16 @@ class MessageSequencer {
   std::int64_t newest_key_ns_ = 0;
   bool have_released_ = false;
   std::int64_t released_key_ns_ = 0;
-  bool have_imu_ = false;
-  std::int64_t last_imu_ns_ = 0;
-  bool have_scan_ = false;
-  std::int64_t last_scan_ns_ = 0;
+  Stream streams_[2];  ///< 0 IMU, 1 scans
+  struct Suspect {
+    int kind = 0;              ///< the stream that seems to have jumped
+    std::int64_t step_ns = 0;  ///< its stamp minus the expected one
+    std::int64_t other_last_ns = 0;
+    bool other_seen = false;     ///< the other stream's next message came
+    bool other_went_on = false;  ///< ... without the step
+  };
+  std::optional<Suspect> suspect_;
+  std::vector<LogMessage> held_;  ///< the suspect and its stream's messages after it
   bool finished_ = false;
 };
 

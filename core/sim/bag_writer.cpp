@@ -150,8 +150,8 @@ void BagWriter::writeVelodyneScan(const std::string& topic, const VelodyneScanMe
 }
 
 void BagWriter::writeImu(const std::string& topic, const std::string& frame_id,
-                         const ImuSample& sample, double gyro_variance, double accel_variance,
-                         const ImuOrientation* orientation) {
+                         const ImuSample& sample, std::int64_t record_ns, double gyro_variance,
+                         double accel_variance, const ImuOrientation* orientation) {
   sensor_msgs::Imu msg;
   msg.header.seq = impl_->imu_seq++;
   msg.header.stamp = rosTime(sample.stamp_ns);
@@ -176,7 +176,7 @@ void BagWriter::writeImu(const std::string& topic, const std::string& frame_id,
     msg.angular_velocity_covariance[4 * i] = gyro_variance;
     msg.linear_acceleration_covariance[4 * i] = accel_variance;
   }
-  writeMessage(impl_->bag, path_, topic, sample.stamp_ns, msg, "an IMU message");
+  writeMessage(impl_->bag, path_, topic, record_ns, msg, "an IMU message");
 }
 
 void BagWriter::close() {

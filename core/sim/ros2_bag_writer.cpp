@@ -65,15 +65,15 @@ void Ros2BagWriter::writeOrganisedScan(const std::string& topic, const std::stri
 }
 
 void Ros2BagWriter::writeImu(const std::string& topic, const std::string& frame_id,
-                             const ImuSample& sample, double gyro_variance, double accel_variance,
-                             const ImuOrientation* orientation) {
+                             const ImuSample& sample, std::int64_t record_ns, double gyro_variance,
+                             double accel_variance, const ImuOrientation* orientation) {
   double q[4], variance[3];
   if (orientation != nullptr) {
     const Eigen::Quaterniond& o = orientation->q_world_imu;
     q[0] = o.x(), q[1] = o.y(), q[2] = o.z(), q[3] = o.w();
     for (int i = 0; i < 3; ++i) variance[i] = orientation->variance[i];
   }
-  write(topic, kImuType, sample.stamp_ns,
+  write(topic, kImuType, record_ns,
         encodeImu(sample, frame_id, gyro_variance, accel_variance, orientation ? q : nullptr,
                   orientation ? variance : nullptr, WireFormat::kCdr));
 }

@@ -26,7 +26,7 @@ class Ros2BagWriter final : public SimLogWriter {
                           const OrganisedScan& scan, std::int64_t stamp_ns,
                           std::int64_t receipt_ns) override;
   void writeImu(const std::string& topic, const std::string& frame_id, const ImuSample& sample,
-                double gyro_variance, double accel_variance,
+                std::int64_t record_ns, double gyro_variance, double accel_variance,
                 const ImuOrientation* orientation = nullptr) override;
   void writeVelodyneScan(const std::string& topic, const VelodyneScanMessage& scan,
                          std::int64_t receipt_ns) override;

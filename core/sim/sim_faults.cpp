@@ -9,18 +9,51 @@
 namespace storey::sim {
 namespace {
 
-double parseSeconds(const std::string& number, const std::string& text) {
+double parseNumber(const std::string& number, double& value) {
   std::size_t used = 0;
-  double value = 0.0;
   try {
     value = std::stod(number, &used);
   } catch (const std::exception&) {
     used = 0;
   }
-  if (used == 0 || used != number.size() || !std::isfinite(value) || value < 0.0)
+  return used != 0 && used == number.size() && std::isfinite(value);
+}
+
+double parseSeconds(const std::string& number, const std::string& text) {
+  double value = 0.0;
+  if (number.empty() || number[0] == '+' || number[0] == '-' || !parseNumber(number, value) ||
+      value < 0.0)
     throw Error("--fault '" + text + "': '" + number + "' is not a time >= 0 in seconds");
   return value;
 }
+
+const char* kindName(SimFaultKind kind) {
+  switch (kind) {
+    case SimFaultKind::kImuSpike:
+      return "imu_spike";
+    case SimFaultKind::kImuGap:
+      return "imu_gap";
+    case SimFaultKind::kLidarGap:
+      return "lidar_gap";
+    case SimFaultKind::kImuSaturation:
+      return "imu_saturation";
+    case SimFaultKind::kOcclusion:
+      return "occlusion";
+    case SimFaultKind::kImuClockJump:
+      return "imu_clock_jump";
+    case SimFaultKind::kLidarClockJump:
+      return "lidar_clock_jump";
+  }
+  return "?";
+}
+
+bool isClockJump(SimFaultKind kind) {
+  return kind == SimFaultKind::kImuClockJump || kind == SimFaultKind::kLidarClockJump;
+}
+
+constexpr const char* kFaultList =
+    "imu_spike@T, imu_gap@T+D, lidar_gap@T+D, imu_saturation@T+D, occlusion@T+D, "
+    "imu_clock_jump@T+S, lidar_clock_jump@T+S";
 
 }  // namespace
 
@@ -28,18 +61,31 @@ SimFault parseSimFault(const std::string& text) {
   const std::size_t at = text.find('@');
   const std::string kind = text.substr(0, at);
   SimFault fault;
-  if (kind == "imu_spike") {
-    fault.kind = SimFaultKind::kImuSpike;
-  } else if (kind == "imu_gap") {
-    fault.kind = SimFaultKind::kImuGap;
-  } else if (kind == "lidar_gap") {
-    fault.kind = SimFaultKind::kLidarGap;
-  } else {
-    throw Error("--fault '" + text + "': unknown fault '" + kind +
-                "' (imu_spike@T, imu_gap@T+D, lidar_gap@T+D)");
+  bool known = false;
+  for (SimFaultKind k : {SimFaultKind::kImuSpike, SimFaultKind::kImuGap, SimFaultKind::kLidarGap,
+                         SimFaultKind::kImuSaturation, SimFaultKind::kOcclusion,
+                         SimFaultKind::kImuClockJump, SimFaultKind::kLidarClockJump}) {
+    if (kind == kindName(k)) {
+      fault.kind = k;
+      known = true;
+    }
   }
+  if (!known)
+    throw Error("--fault '" + text + "': unknown fault '" + kind + "' (" + kFaultList + ")");
   if (at == std::string::npos) throw Error("--fault '" + text + "': expected " + kind + "@T");
   const std::string when = text.substr(at + 1);
+  if (isClockJump(fault.kind)) {
+    const std::size_t sign = when.find_first_of("+-", 1);
+    if (sign == std::string::npos)
+      throw Error("--fault '" + text + "': expected " + kind +
+                  "@T+S or @T-S (start and the stamps' step in seconds)");
+    fault.time = parseSeconds(when.substr(0, sign), text);
+    if (!parseNumber(when.substr(sign), fault.step) || fault.step == 0.0 ||
+        when.substr(sign + 1).find_first_of("+-") == 0)
+      throw Error("--fault '" + text + "': '" + when.substr(sign) +
+                  "' is not a step in seconds other than 0");
+    return fault;
+  }
   const std::size_t plus = when.find('+');
   fault.time = parseSeconds(when.substr(0, plus), text);
   if (fault.kind == SimFaultKind::kImuSpike) {
@@ -55,11 +101,12 @@ SimFault parseSimFault(const std::string& text) {
 
 std::string toString(const SimFault& fault) {
   std::ostringstream os;
-  os << (fault.kind == SimFaultKind::kImuSpike ? "imu_spike"
-         : fault.kind == SimFaultKind::kImuGap ? "imu_gap"
-                                               : "lidar_gap")
-     << '@' << fault.time;
-  if (fault.kind != SimFaultKind::kImuSpike) os << '+' << fault.duration;
+  os << kindName(fault.kind) << '@' << fault.time;
+  if (isClockJump(fault.kind)) {
+    os << (fault.step >= 0.0 ? "+" : "") << fault.step;
+  } else if (fault.kind != SimFaultKind::kImuSpike) {
+    os << '+' << fault.duration;
+  }
   return os.str();
 }
 
@@ -68,13 +115,20 @@ SampleFaults imuSampleFaults(const std::vector<SimFault>& faults,
   SampleFaults out;
   out.drop.assign(stamps.size(), 0);
   out.spike.assign(stamps.size(), 0);
+  out.saturate.assign(stamps.size(), 0);
+  out.shift_ns.assign(stamps.size(), 0);
   for (const SimFault& f : faults) {
     const auto first = std::lower_bound(stamps.begin(), stamps.end(), f.time);
+    const auto index = [&](auto it) { return static_cast<std::size_t>(it - stamps.begin()); };
     if (f.kind == SimFaultKind::kImuSpike) {
-      if (first != stamps.end()) out.spike[static_cast<std::size_t>(first - stamps.begin())] = 1;
-    } else if (f.kind == SimFaultKind::kImuGap) {
+      if (first != stamps.end()) out.spike[index(first)] = 1;
+    } else if (f.kind == SimFaultKind::kImuGap || f.kind == SimFaultKind::kImuSaturation) {
+      std::vector<char>& flags = f.kind == SimFaultKind::kImuGap ? out.drop : out.saturate;
       for (auto it = first; it != stamps.end() && *it <= f.time + f.duration; ++it)
-        out.drop[static_cast<std::size_t>(it - stamps.begin())] = 1;
+        flags[index(it)] = 1;
+    } else if (f.kind == SimFaultKind::kImuClockJump) {
+      const auto step = static_cast<std::int64_t>(std::llround(f.step * 1e9));
+      for (auto it = first; it != stamps.end(); ++it) out.shift_ns[index(it)] += step;
     }
   }
   return out;
@@ -84,6 +138,25 @@ bool inLidarGap(const std::vector<SimFault>& faults, double time) {
   return std::any_of(faults.begin(), faults.end(), [&](const SimFault& f) {
     return f.kind == SimFaultKind::kLidarGap && time >= f.time && time <= f.time + f.duration;
   });
+}
+
+bool inOcclusion(const std::vector<SimFault>& faults, double time) {
+  return std::any_of(faults.begin(), faults.end(), [&](const SimFault& f) {
+    return f.kind == SimFaultKind::kOcclusion && time >= f.time && time <= f.time + f.duration;
+  });
+}
+
+std::int64_t lidarClockShiftNs(const std::vector<SimFault>& faults, double time) {
+  std::int64_t shift = 0;
+  for (const SimFault& f : faults)
+    if (f.kind == SimFaultKind::kLidarClockJump && time >= f.time)
+      shift += static_cast<std::int64_t>(std::llround(f.step * 1e9));
+  return shift;
+}
+
+bool hasFault(const std::vector<SimFault>& faults, SimFaultKind kind) {
+  return std::any_of(faults.begin(), faults.end(),
+                     [&](const SimFault& f) { return f.kind == kind; });
 }
 
 }  // namespace storey::sim

@@ -28,12 +28,13 @@ class SimLogWriter {
   virtual void writeOrganisedScan(const std::string& topic, const std::string& frame_id,
                                   const OrganisedScan& scan, std::int64_t stamp_ns,
                                   std::int64_t receipt_ns) = 0;
-  /// IMU sample with an absolute stamp (also its record time). Covariances are
+  /// IMU sample with an absolute stamp, recorded at `record_ns` (its stamp
+  /// unless its clock jumped, sim_faults.h). Covariances are
   /// the discrete white-noise variances. Without `orientation` none is
   /// provided (orientation_covariance[0] = -1).
   virtual void writeImu(const std::string& topic, const std::string& frame_id,
-                        const ImuSample& sample, double gyro_variance, double accel_variance,
-                        const ImuOrientation* orientation = nullptr) = 0;
+                        const ImuSample& sample, std::int64_t record_ns, double gyro_variance,
+                        double accel_variance, const ImuOrientation* orientation = nullptr) = 0;
   /// Velodyne packets as a velodyne_msgs/VelodyneScan, recorded at `receipt_ns`.
   virtual void writeVelodyneScan(const std::string& topic, const VelodyneScanMessage& scan,
                                  std::int64_t receipt_ns) = 0;

@@ -205,13 +205,25 @@ SimulationResult simulate(const BuildingSpec& spec, const SimulationOptions& opt
       sample.gyro = Eigen::Vector3d(kSpikeGyro, -kSpikeGyro, kSpikeGyro);
       sample.accel = Eigen::Vector3d(kSpikeAccel, -kSpikeAccel, kSpikeAccel);
     }
+    if (imu_faults.saturate[i]) {
+      sample.gyro.x() = kSpikeGyro;
+      sample.accel.z() = kSpikeAccel;
+    }
+    sample.stamp_ns += imu_faults.shift_ns[i];  // the record time stays imu.samples[i]'s
     return true;
   };
-  const bool lidar_gaps =
-      std::any_of(options.faults.begin(), options.faults.end(),
-                  [](const SimFault& f) { return f.kind == SimFaultKind::kLidarGap; });
-  if (lidar_gaps && (formats.pcap || formats.packets))
-    throw Error("--fault lidar_gap: only for point clouds (not with --pcap or --packets)");
+  const bool lidar_gaps = hasFault(options.faults, SimFaultKind::kLidarGap);
+  const bool occlusions = hasFault(options.faults, SimFaultKind::kOcclusion);
+  const bool lidar_jumps = hasFault(options.faults, SimFaultKind::kLidarClockJump);
+  for (const auto& [kind, name] : {std::pair{SimFaultKind::kLidarGap, "lidar_gap"},
+                                   {SimFaultKind::kOcclusion, "occlusion"},
+                                   {SimFaultKind::kLidarClockJump, "lidar_clock_jump"}}) {
+    if (hasFault(options.faults, kind) && (formats.pcap || formats.packets))
+      throw Error(std::string("--fault ") + name +
+                  ": only for point clouds (not with --pcap or --packets)");
+  }
+  if (hasFault(options.faults, SimFaultKind::kImuClockJump) && formats.pcap)
+    throw Error("--fault imu_clock_jump: only for bags (an IMU CSV has no record times)");
   writeFileAtomically(staging.file(kImuTruthFile), [&](std::ostream& out) {
     out << "# timestamp x y z qx qy qz qw (IMU frame in the world frame)\n";
     for (std::size_t i = 0; i < imu.samples.size(); ++i)
@@ -226,6 +238,10 @@ SimulationResult simulate(const BuildingSpec& spec, const SimulationOptions& opt
     noise.quantize = true;
   }
   const LidarSimulator lidar(world.building.mesh, trajectory, sensors, noise, spec.seed);
+  if ((occlusions || lidar_jumps) && lidar.beams().layout == CloudLayout::kOuster)
+    throw Error(
+        "--fault occlusion and lidar_clock_jump: only for Velodyne-layout point clouds (not "
+        "the Ouster layout)");
   const int scan_count = lidar.scanCount(result.duration);
   result.scans = scan_count;
 
@@ -286,10 +302,11 @@ SimulationResult simulate(const BuildingSpec& spec, const SimulationOptions& opt
         orientation.variance = sensors.imu.orientation_sigma.cwiseAbs2();
       }
       ImuSample sample;
+      const std::int64_t record_ns = start_ns + imu.samples[next_imu].stamp_ns;
       if (!loggedImu(next_imu++, sample)) continue;
       sample.stamp_ns += start_ns;
       for (auto& log : logs) {
-        log->writeImu(sensors.imu_topic, sensors.imu_frame_id, sample, gyro_variance,
+        log->writeImu(sensors.imu_topic, sensors.imu_frame_id, sample, record_ns, gyro_variance,
                       accel_variance, sensors.imu.orientation ? &orientation : nullptr);
       }
     }
@@ -357,8 +374,18 @@ SimulationResult simulate(const BuildingSpec& spec, const SimulationOptions& opt
                    trajectory.frame(scan.stamp_ns * 1e-9, sensors.T_body_lidar).T_world_frame);
       result.points += static_cast<std::int64_t>(scan.points.size());
       scan.stamp_ns += start_ns;
-      const bool blackout =
-          lidar_gaps && inLidarGap(options.faults, (scan.stamp_ns - start_ns) * 1e-9);
+      const double scan_time = (scan.stamp_ns - start_ns) * 1e-9;
+      const bool blackout = lidar_gaps && inLidarGap(options.faults, scan_time);
+      if (occlusions && inOcclusion(options.faults, scan_time)) {
+        // A body in front of the sensor: the rays of the forward sector end on it.
+        for (ScanPoint& point : scan.points) {
+          const float range = point.p.norm();
+          if (range > 0.0f &&
+              std::abs(std::atan2(point.p.y(), point.p.x())) <= kOcclusionHalfSector)
+            point.p *= kOcclusionRange / range;
+        }
+      }
+      if (lidar_jumps) scan.stamp_ns += lidarClockShiftNs(options.faults, scan_time);
       for (auto& log : logs) {
         if (packets || blackout) break;
         if (organised) {

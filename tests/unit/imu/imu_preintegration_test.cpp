@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <iostream>
 
@@ -137,6 +138,37 @@ TEST(ImuPreintegration, PredictEqualsDirectWorldFrameIntegration) {
   EXPECT_LT(angleBetween(a.T_world_imu.rotation(), b.T_world_imu.rotation()), 1e-12);
   EXPECT_LT((a.v_world_imu - b.v_world_imu).norm(), 1e-12);
   EXPECT_LT((a.T_world_imu.translation() - b.T_world_imu.translation()).norm(), 1e-12);
+}
+
+// Samples removed before one (ImuSample::after_removed: a saturated run,
+// io/imu_guard.h) make its interval a dropout whatever its length: the
+// covariance grows by the dropout sigmas there; the mean is unchanged.
+TEST(ImuPreintegration, AnIntervalAfterRemovedSamplesIsADropout) {
+  const SyntheticTrajectory tr = SyntheticTrajectory::trot();
+  auto samples = test::simulateImu(tr, test::ImuSimOptions());
+  const std::int64_t t_i = ns(0.30001), t_j = ns(0.40377);
+  // 20 ms without samples (below the 50 ms dropout threshold).
+  const auto in_hole = [&](const ImuSample& s) {
+    return s.stamp_ns > ns(0.35) && s.stamp_ns < ns(0.37);
+  };
+  samples.erase(std::remove_if(samples.begin(), samples.end(), in_hole), samples.end());
+  const auto after = std::find_if(samples.begin(), samples.end(),
+                                  [&](const ImuSample& s) { return s.stamp_ns >= ns(0.37); });
+  ASSERT_NE(after, samples.end());
+  const ImuPreintegration plain =
+      ImuPreintegration::fromSamples(samples, t_i, t_j, ImuBias(), ImuNoise());
+  after->after_removed = true;
+  const ImuPreintegration marked =
+      ImuPreintegration::fromSamples(samples, t_i, t_j, ImuBias(), ImuNoise());
+  EXPECT_LT((plain.predict(tr.state(t_i, ImuBias())).T_world_imu.translation() -
+             marked.predict(tr.state(t_i, ImuBias())).T_world_imu.translation())
+                .norm(),
+            1e-15);
+  // Over the 20 ms hole the rotation's variance grows by about
+  // dropout_gyro_sigma^2 dt^2 = (1 rad/s)^2 (0.02 s)^2 per axis.
+  const double added = marked.covariance()(0, 0) - plain.covariance()(0, 0);
+  EXPECT_GT(added, 0.5 * 4e-4);
+  EXPECT_LT(added, 2.0 * 4e-4);
 }
 
 // Analytic bias Jacobians against central differences of full re-integration.

@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <functional>
 #include <limits>
 
 namespace storey {
@@ -188,6 +189,126 @@ TEST(IoMessageSequencer, DeliveryIsMonotonic) {
   delivered += static_cast<int>(drain(sequencer).size());
   EXPECT_EQ(delivered, 2050);
   EXPECT_TRUE(stats.dropped.empty());
+}
+
+/// A log in record order: IMU at 200 Hz recorded at its true time, scans at
+/// 10 Hz recorded at the end of their sweep (0.1 s after their start), from
+/// 0 to `end_ms`; `imu_stamp` and `scan_stamp` map a true time to the stamp
+/// written (a clock jump), -1: the message is missing. Returns what the
+/// sequencer delivers.
+std::vector<std::pair<char, std::int64_t>> recordOrder(
+    MessageSequencer& sequencer, std::int64_t end_ms,
+    const std::function<std::int64_t(std::int64_t)>& imu_stamp,
+    const std::function<std::int64_t(std::int64_t)>& scan_stamp) {
+  std::vector<std::pair<char, std::int64_t>> out;
+  LogMessage m;
+  const auto take = [&] {
+    while (sequencer.pop(m)) {
+      if (const auto* s = std::get_if<Scan>(&m)) {
+        out.emplace_back('s', s->stamp_ns);
+      } else {
+        out.emplace_back('i', std::get<ImuSample>(m).stamp_ns);
+      }
+    }
+  };
+  for (std::int64_t t = 0; t <= end_ms * kMs; t += 5 * kMs) {
+    if (t % (100 * kMs) == 0 && t >= 100 * kMs) {
+      const std::int64_t stamp = scan_stamp(t - 100 * kMs);
+      if (stamp >= 0) sequencer.push(scan(stamp));
+    }
+    const std::int64_t stamp = imu_stamp(t);
+    if (stamp >= 0) sequencer.push(imu(stamp));
+    take();
+  }
+  sequencer.finish();
+  take();
+  return out;
+}
+
+std::int64_t same(std::int64_t t) {
+  return t;
+}
+
+/// The stamps of one stream ('i' or 's') delivered.
+std::vector<std::int64_t> stampsOf(const std::vector<std::pair<char, std::int64_t>>& out,
+                                   char kind) {
+  std::vector<std::int64_t> stamps;
+  for (const auto& [k, stamp] : out)
+    if (k == kind) stamps.push_back(stamp);
+  return stamps;
+}
+
+TEST(IoMessageSequencer, AnImuClockJumpIsMeasuredAndUndone) {
+  for (const std::int64_t jump : {2000 * kMs, -1500 * kMs, 500 * kMs, -450 * kMs}) {
+    LogReadStats stats;
+    MessageSequencer sequencer({}, stats);
+    const auto out = recordOrder(
+        sequencer, 6000, [&](std::int64_t t) { return t >= 3000 * kMs ? t + jump : t; }, same);
+    ASSERT_EQ(stats.clock_jumps.size(), 1u) << jump;
+    EXPECT_TRUE(stats.clock_jumps[0].imu);
+    EXPECT_EQ(stats.clock_jumps[0].stamp_ns, 3000 * kMs);
+    EXPECT_EQ(stats.clock_jumps[0].step_ns, jump);
+    // Every sample delivered, at its true stamp, nothing dropped.
+    const auto imu_stamps = stampsOf(out, 'i');
+    ASSERT_EQ(imu_stamps.size(), 1201u) << jump;
+    for (std::size_t k = 0; k < imu_stamps.size(); ++k)
+      EXPECT_EQ(imu_stamps[k], static_cast<std::int64_t>(k) * 5 * kMs);
+    EXPECT_EQ(stampsOf(out, 's').size(), 60u);
+    EXPECT_TRUE(stats.dropped.empty());
+  }
+}
+
+TEST(IoMessageSequencer, ALidarClockJumpIsMeasuredAndUndone) {
+  for (const std::int64_t jump : {1500 * kMs, -500 * kMs}) {
+    LogReadStats stats;
+    MessageSequencer sequencer({}, stats);
+    const auto out = recordOrder(sequencer, 6000, same,
+                                 [&](std::int64_t t) { return t >= 3000 * kMs ? t + jump : t; });
+    ASSERT_EQ(stats.clock_jumps.size(), 1u) << jump;
+    EXPECT_FALSE(stats.clock_jumps[0].imu);
+    EXPECT_EQ(stats.clock_jumps[0].stamp_ns, 3000 * kMs);
+    EXPECT_EQ(stats.clock_jumps[0].step_ns, jump);
+    const auto scan_stamps = stampsOf(out, 's');
+    ASSERT_EQ(scan_stamps.size(), 60u) << jump;
+    for (std::size_t k = 0; k < scan_stamps.size(); ++k)
+      EXPECT_EQ(scan_stamps[k], static_cast<std::int64_t>(k) * 100 * kMs);
+    EXPECT_TRUE(stats.dropped.empty());
+  }
+}
+
+TEST(IoMessageSequencer, GapsPausesAndAGarbledStampAreNotClockJumps) {
+  const auto missing = [](std::int64_t from_ms, std::int64_t to_ms) {
+    return [=](std::int64_t t) { return t >= from_ms * kMs && t < to_ms * kMs ? -1 : t; };
+  };
+  {  // one second without IMU: the scans go on, so the lead stays
+    LogReadStats stats;
+    MessageSequencer sequencer({}, stats);
+    const auto out = recordOrder(sequencer, 6000, missing(3000, 4000), same);
+    EXPECT_TRUE(stats.clock_jumps.empty());
+    EXPECT_EQ(stampsOf(out, 'i').size(), 1201u - 200u);
+  }
+  {  // one second without scans
+    LogReadStats stats;
+    MessageSequencer sequencer({}, stats);
+    const auto out = recordOrder(sequencer, 6000, same, missing(3000, 4000));
+    EXPECT_TRUE(stats.clock_jumps.empty());
+    EXPECT_EQ(stampsOf(out, 's').size(), 50u);
+  }
+  {  // both streams pause for a second: whichever resumes first stepped, but so does the other
+    LogReadStats stats;
+    MessageSequencer sequencer({}, stats);
+    recordOrder(sequencer, 6000, missing(3000, 4000), missing(2900, 3900));
+    EXPECT_TRUE(stats.clock_jumps.empty());
+  }
+  {  // one IMU sample stamped 2 s early: dropped as before, the stream is not moved
+    LogReadStats stats;
+    MessageSequencer sequencer({}, stats);
+    const auto out = recordOrder(
+        sequencer, 6000, [](std::int64_t t) { return t == 3000 * kMs ? t - 2000 * kMs : t; }, same);
+    EXPECT_TRUE(stats.clock_jumps.empty());
+    EXPECT_EQ(stampsOf(out, 'i').size(), 1200u);
+    EXPECT_EQ(stats.dropped[kDropImuBackwards], 1);
+  }
 }
 
 }  // namespace
