@@ -1,6 +1,7 @@
 #include "io/message_sequencer.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 
 namespace storey {
@@ -25,6 +26,23 @@ int kindOf(const LogMessage& m) {
 std::int64_t& stampOf(LogMessage& m) {
   if (auto* scan = std::get_if<Scan>(&m)) return scan->stamp_ns;
   return std::get<ImuSample>(m).stamp_ns;
+}
+
+// Differences of stamps for the jump checks, in double: a log's stamps can
+// lie anywhere in +-2^62 ns (ROS 1 seconds are unsigned 32-bit), so sums of
+// three of them overflow int64; the checks only need about a microsecond.
+double ns(std::int64_t v) {
+  return static_cast<double>(v);
+}
+
+// A larger step is no clock jump but a stamp outside every log format's
+// range (2^32 s): it goes on to the order checks unchanged. A clock set from
+// 1970 to today by a late time sync (1.7e18 ns) is a jump.
+constexpr double kMaxClockJumpNs = 5e18;
+
+// stamp + shift, false when it leaves int64 (then the message is dropped).
+bool shifted(std::int64_t stamp_ns, std::int64_t shift_ns, std::int64_t& out) {
+  return !__builtin_add_overflow(stamp_ns, shift_ns, &out);
 }
 
 }  // namespace
@@ -59,14 +77,15 @@ void MessageSequencer::route(LogMessage&& message) {
     } else if (!suspect_->other_seen) {
       // The other stream's next message: did it step as well (a pause of both)?
       const Stream& other = streams_[kind];
-      const std::int64_t step = stampOf(message) + other.shift_ns - suspect_->other_last_ns;
+      const double step = ns(stampOf(message)) + ns(other.shift_ns) - ns(suspect_->other_last_ns);
       suspect_->other_seen = true;
-      suspect_->other_went_on = std::abs(step) < std::abs(suspect_->step_ns) / 2 + other.period_ns;
+      suspect_->other_went_on =
+          std::abs(step) < std::abs(ns(suspect_->step_ns)) / 2 + ns(other.period_ns);
     }
     if (suspect_->other_seen && held_.size() >= 2) {
       // And the stream goes on from the new stamp (not one garbled stamp)?
-      const std::int64_t next = stampOf(held_[1]) - stampOf(held_[0]) - period;
-      resolve(suspect_->other_went_on && std::abs(next) < kClockJumpNs / 2);
+      const double next = ns(stampOf(held_[1])) - ns(stampOf(held_[0])) - ns(period);
+      resolve(suspect_->other_went_on && std::abs(next) < ns(kClockJumpNs) / 2);
     } else if (held_.size() > kMaxHeld) {
       resolve(false);
     }
@@ -77,13 +96,20 @@ void MessageSequencer::route(LogMessage&& message) {
   const Stream& own = streams_[kind];
   const Stream& other = streams_[1 - kind];
   if (own.have && own.period_ns > 0 && own.have_lead && other.have) {
-    const std::int64_t stamp = stampOf(message) + own.shift_ns;
-    const std::int64_t step = stamp - own.last_ns - own.period_ns;
-    const std::int64_t lead_change = (stamp - other.last_ns) - own.lead_ns;
-    if (std::abs(step) > kClockJumpNs && std::abs(lead_change - step) < kClockJumpNs / 2) {
-      suspect_ = Suspect{kind, step, other.last_ns, false, false};
-      held_.push_back(std::move(message));
-      return;
+    const double stamp = ns(stampOf(message)) + ns(own.shift_ns);
+    const double step = stamp - ns(own.last_ns) - ns(own.period_ns);
+    const double lead_change = (stamp - ns(other.last_ns)) - own.lead_ns;
+    if (std::abs(step) > ns(kClockJumpNs) && std::abs(step) < kMaxClockJumpNs &&
+        std::abs(lead_change - step) < ns(kClockJumpNs) / 2) {
+      // The step exactly (the double above is within a microsecond of it).
+      std::int64_t stamp_ns = 0, step_ns = 0;
+      if (shifted(stampOf(message), own.shift_ns, stamp_ns) &&
+          !__builtin_sub_overflow(stamp_ns, own.last_ns, &step_ns) &&
+          !__builtin_sub_overflow(step_ns, own.period_ns, &step_ns)) {
+        suspect_ = Suspect{kind, step_ns, other.last_ns, false, false};
+        held_.push_back(std::move(message));
+        return;
+      }
     }
   }
   accept(std::move(message));
@@ -94,11 +120,13 @@ void MessageSequencer::resolve(bool jumped) {
   suspect_.reset();
   std::vector<LogMessage> held;
   held.swap(held_);
-  if (jumped) {
-    Stream& stream = streams_[suspect.kind];
-    stream.shift_ns -= suspect.step_ns;
-    stats_.clock_jumps.push_back(
-        ClockJump{suspect.kind == 0, stampOf(held.front()) + stream.shift_ns, suspect.step_ns});
+  Stream& stream = streams_[suspect.kind];
+  std::int64_t shift_ns = 0;
+  if (jumped && !__builtin_sub_overflow(stream.shift_ns, suspect.step_ns, &shift_ns)) {
+    stream.shift_ns = shift_ns;
+    std::int64_t at_ns = stampOf(held.front());
+    if (!shifted(at_ns, stream.shift_ns, at_ns)) at_ns = stampOf(held.front());
+    stats_.clock_jumps.push_back(ClockJump{suspect.kind == 0, at_ns, suspect.step_ns});
   }
   for (LogMessage& m : held) accept(std::move(m));
 }
@@ -115,7 +143,9 @@ void MessageSequencer::noteStamp(int kind, std::int64_t stamp_ns) {
   Stream& stream = streams_[kind];
   const Stream& other = streams_[1 - kind];
   if (stream.have && stream.period_ns == 0) {
-    stream.intervals.push_back(stamp_ns - stream.last_ns);
+    std::int64_t interval_ns = 0;
+    if (!__builtin_sub_overflow(stamp_ns, stream.last_ns, &interval_ns))
+      stream.intervals.push_back(interval_ns);
     if (stream.intervals.size() == kIntervalsForPeriod) {
       auto mid = stream.intervals.begin() + kIntervalsForPeriod / 2;
       std::nth_element(stream.intervals.begin(), mid, stream.intervals.end());
@@ -126,19 +156,20 @@ void MessageSequencer::noteStamp(int kind, std::int64_t stamp_ns) {
   stream.have = true;
   stream.last_ns = stamp_ns;
   stream.have_lead = other.have;
-  stream.lead_ns = stamp_ns - other.last_ns;
+  stream.lead_ns = ns(stamp_ns) - ns(other.last_ns);
 }
 
 void MessageSequencer::acceptScan(Scan&& scan) {
   Stream& stream = streams_[1];
-  scan.stamp_ns += stream.shift_ns;
-  if (stream.have && scan.stamp_ns <= stream.last_ns) {
+  if (!shifted(scan.stamp_ns, stream.shift_ns, scan.stamp_ns) ||
+      (stream.have && scan.stamp_ns <= stream.last_ns)) {
     ++stats_.dropped[scan.stamp_ns == stream.last_ns ? kDropScanDuplicate : kDropScanBackwards];
     return;
   }
   noteStamp(1, scan.stamp_ns);
-  const std::int64_t key = scan.stamp_ns + options_.lidar_to_imu_offset_ns;
-  if (have_released_ && key < released_key_ns_) {
+  std::int64_t key = 0;
+  if (!shifted(scan.stamp_ns, options_.lidar_to_imu_offset_ns, key) ||
+      (have_released_ && key < released_key_ns_)) {
     ++stats_.dropped[kDropScanLate];
     return;
   }
@@ -148,8 +179,8 @@ void MessageSequencer::acceptScan(Scan&& scan) {
 void MessageSequencer::acceptImu(const ImuSample& in) {
   Stream& stream = streams_[0];
   ImuSample imu = in;
-  imu.stamp_ns += stream.shift_ns;
-  if (stream.have && imu.stamp_ns <= stream.last_ns) {
+  if (!shifted(imu.stamp_ns, stream.shift_ns, imu.stamp_ns) ||
+      (stream.have && imu.stamp_ns <= stream.last_ns)) {
     ++stats_.dropped[imu.stamp_ns == stream.last_ns ? kDropImuDuplicate : kDropImuBackwards];
     return;
   }

@@ -82,7 +82,7 @@ class MessageSequencer {
     std::vector<std::int64_t> intervals;
     std::int64_t period_ns = 0;  ///< 0 until known
     bool have_lead = false;
-    std::int64_t lead_ns = 0;  ///< last_ns - the other stream's last_ns then
+    double lead_ns = 0.0;  ///< last_ns - the other stream's last_ns then (double: see ns())
   };
   /// The clock-jump check, then accept().
   void route(LogMessage&& message);

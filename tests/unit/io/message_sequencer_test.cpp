@@ -311,5 +311,27 @@ TEST(IoMessageSequencer, GapsPausesAndAGarbledStampAreNotClockJumps) {
   }
 }
 
+TEST(IoMessageSequencer, StampsAtTheEndsOfTheirRangeDoNotOverflowTheJumpChecks) {
+  // A ROS 1 stamp is 0..2^32 s (up to 4.3e18 ns): an IMU stream that jumps
+  // to the end of that range and back while the scans stay put, then the
+  // scans jump there; sums of three such stamps exceed int64 (the asan
+  // build's UBSan would stop at one). Such a step is a jump (a clock set
+  // from 1970 to today by a late time sync is one).
+  const std::int64_t far = std::int64_t{4'294'967'295} * 1'000'000'000 + 999'999'999;
+  LogReadStats stats;
+  MessageSequencer sequencer({}, stats);
+  const auto out = recordOrder(
+      sequencer, 6000,
+      [&](std::int64_t t) {
+        if (t >= 2000 * kMs && t < 3000 * kMs) return far - (3000 * kMs - t);
+        if (t >= 4000 * kMs && t < 4500 * kMs) return t / 1000;
+        return t;
+      },
+      [&](std::int64_t t) { return t >= 5000 * kMs ? far - 1000 * kMs + t : t; });
+  EXPECT_FALSE(stats.clock_jumps.empty());
+  // Everything delivered is in time order.
+  for (std::size_t k = 1; k < out.size(); ++k) EXPECT_LE(out[k - 1].second, out[k].second);
+}
+
 }  // namespace
 }  // namespace storey
