@@ -128,6 +128,10 @@ std::string evaluationJson(const EvaluationResult& result) {
                       {"off_their_plane_not_down_weighted", p.wrongNotDownWeighted()},
                       {"max_offset_m", p.max_offset},
                       {"max_normal_angle_deg", p.max_angle_deg},
+                      {"offset_median_m", p.offset_median},
+                      {"offset_p90_m", p.offset_p90},
+                      {"tight_offset_m", p.tight_offset},
+                      {"beyond_tight_offset", p.beyond_tight_offset},
                       {"observations_off_their_plane", wrong}};
   } else {
     root["planes"] = nullptr;
@@ -221,6 +225,13 @@ std::string evaluationTable(const EvaluationResult& result) {
         "down-weighted: %zu\n",
         p.planes, p.observations, p.down_weighted, p.max_offset, p.max_angle_deg, p.wrong.size(),
         p.wrongNotDownWeighted());
+    out += format(
+        "  offset from their plane: median %.4f m, 90th percentile %.4f m, beyond %.2f m: %zu "
+        "(%.1f %%)\n",
+        p.offset_median, p.offset_p90, p.tight_offset, p.beyond_tight_offset,
+        p.observations ? 100.0 * static_cast<double>(p.beyond_tight_offset) /
+                             static_cast<double>(p.observations)
+                       : 0.0);
     for (const WrongObservation& w : p.wrong)
       out += format("  plane %d keyframe %d: offset %+.3f m, normal %.1f deg%s\n", w.plane,
                     w.keyframe, w.offset, w.angle_deg, w.down_weighted ? " (down-weighted)" : "");

@@ -35,7 +35,7 @@ const Pose& truthAt(const Trajectory& gt, double t, double tolerance, const std:
 PlaneCheck checkPlanes(const std::string& planes_path, const Trajectory& gt,
                        const PlaneCheckOptions& options) {
   if (!(options.max_offset > 0.0) || !(options.max_angle_deg > 0.0) ||
-      !(options.max_time_difference >= 0.0))
+      !(options.max_time_difference >= 0.0) || !(options.tight_offset > 0.0))
     throw Error("eval: plane check limits must be positive");
   const PlaneMap planes = readPlanesJson(planes_path);
   if (gt.empty()) throw Error("eval: the true trajectory is empty");
@@ -43,6 +43,8 @@ PlaneCheck checkPlanes(const std::string& planes_path, const Trajectory& gt,
   PlaneCheck result;
   result.max_offset = options.max_offset;
   result.max_angle_deg = options.max_angle_deg;
+  result.tight_offset = options.tight_offset;
+  std::vector<double> abs_offsets;  // of every observation
   const double cos_max = std::cos(options.max_angle_deg * M_PI / 180.0);
   for (const GlobalPlane& plane : planes.planes) {
     const std::string where = planes_path + ": plane " + std::to_string(plane.id);
@@ -75,10 +77,20 @@ PlaneCheck checkPlanes(const std::string& planes_path, const Trajectory& gt,
       result.down_weighted += placed[i].outlier;
       const double cos_angle = std::min(1.0, std::abs(placed[i].normal_world.dot(n_plane)));
       const double offset = offsets[i] - median;
+      abs_offsets.push_back(std::abs(offset));
+      result.beyond_tight_offset += std::abs(offset) > options.tight_offset;
       if (cos_angle < cos_max || std::abs(offset) > options.max_offset)
         result.wrong.push_back({plane.id, placed[i].keyframe, offset,
                                 std::acos(cos_angle) * 180.0 / M_PI, placed[i].outlier});
     }
+  }
+  if (!abs_offsets.empty()) {
+    std::sort(abs_offsets.begin(), abs_offsets.end());
+    const auto at = [&](double q) {
+      return abs_offsets[static_cast<std::size_t>(q * static_cast<double>(abs_offsets.size() - 1))];
+    };
+    result.offset_median = at(0.5);
+    result.offset_p90 = at(0.9);
   }
   return result;
 }

@@ -22,12 +22,18 @@ nlohmann::json wallObservation(int keyframe, double x, double shift, bool outlie
           {"centroid", {d, 0.5, 1.0}}, {"outlier", outlier}};
 }
 
-TEST(PlaneCheck, FindsTheObservationOnAnotherSurface) {
-  test::TempDir dir;
+/// Keyframes k = 0..n-1 at time k, at (0.5 k, 0, 0) without rotation.
+Trajectory truthAlongX(int n) {
   Trajectory gt;
-  for (int k = 0; k < 5; ++k)
+  for (int k = 0; k < n; ++k)
     gt.push_back({static_cast<double>(k),
                   Pose(Eigen::Quaterniond::Identity(), Eigen::Vector3d(0.5 * k, 0, 0))});
+  return gt;
+}
+
+TEST(PlaneCheck, FindsTheObservationOnAnotherSurface) {
+  test::TempDir dir;
+  const Trajectory gt = truthAlongX(5);
   nlohmann::json planes = {{"format", "storey planes, version 1"},
                            {"planes", nlohmann::json::array()}};
   nlohmann::json wall = {{"id", 7},
@@ -54,6 +60,32 @@ TEST(PlaneCheck, FindsTheObservationOnAnotherSurface) {
   EXPECT_FALSE(check.wrong[0].down_weighted);
   EXPECT_EQ(check.wrong[1].keyframe, 4);
   EXPECT_TRUE(check.wrong[1].down_weighted);
+  // |offsets| 0, 0.01, 0.01, 0.30, 0.40.
+  EXPECT_NEAR(check.offset_median, 0.01, 1e-9);
+  EXPECT_NEAR(check.offset_p90, 0.30, 1e-9);
+  EXPECT_EQ(check.beyond_tight_offset, 2u);
+}
+
+TEST(PlaneCheck, ASurfaceAFewCentimetresOffIsCountedBeyondTheTightOffset) {
+  // A door recess 5 cm behind the wall, merged into the wall's landmark:
+  // not "off its plane" at 0.1 m, but beyond the 0.03 m tight offset.
+  test::TempDir dir;
+  const Trajectory gt = truthAlongX(10);
+  nlohmann::json wall = {{"id", 3},
+                         {"normal", {1.0, 0.0, 0.0}},
+                         {"distance", 3.0},
+                         {"observations", nlohmann::json::array()}};
+  for (int k = 0; k < 10; ++k)
+    wall["observations"].push_back(wallObservation(k, 0.5 * k, k >= 7 ? 0.05 : 0.0, false));
+  const nlohmann::json planes = {{"format", "storey planes, version 1"}, {"planes", {wall}}};
+  const std::string path = dir.file("planes.json");
+  std::ofstream(path) << planes.dump();
+  const PlaneCheck check = checkPlanes(path, gt);
+  EXPECT_TRUE(check.wrong.empty());
+  EXPECT_EQ(check.beyond_tight_offset, 3u);
+  EXPECT_NEAR(check.offset_median, 0.0, 1e-9);
+  EXPECT_NEAR(check.offset_p90, 0.05, 1e-9);
+  EXPECT_DOUBLE_EQ(check.tight_offset, 0.03);
 }
 
 TEST(PlaneCheck, BadInputIsAClearError) {
