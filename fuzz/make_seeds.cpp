@@ -130,8 +130,10 @@ void writeSimLog(sim::SimLogWriter& log, bool packets) {
   std::size_t next_imu = 0;
   for (int k = 0; k < 2; ++k) {
     const std::int64_t stamp = kStartNs + k * 100000000;
-    while (next_imu < imu.size() && imu[next_imu].stamp_ns <= stamp + 100000000)
-      log.writeImu("/imu/data", "imu", imu[next_imu++], 1e-6, 1e-4);
+    while (next_imu < imu.size() && imu[next_imu].stamp_ns <= stamp + 100000000) {
+      const ImuSample& sample = imu[next_imu++];
+      log.writeImu("/imu/data", "imu", sample, sample.stamp_ns, 1e-6, 1e-4);
+    }
     if (packets) {
       VelodyneScanMessage scan = tinyVelodyneScan(velodyne::Model::kVlp16, 24 * 2);
       for (auto& p : scan.packets) p.stamp_ns += k * 100000000;
