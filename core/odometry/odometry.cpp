@@ -369,7 +369,6 @@ void LidarInertialOdometry::emit(Frame& frame) {
   const Pose T_output_map(result.q_world_odom, Eigen::Vector3d::Zero());
   result.state.T_world_imu = T_output_map * result.state.T_world_imu;
   result.state.v_world_imu = T_output_map.rotation() * result.state.v_world_imu;
-  result.T_world_lidar = result.state.T_world_imu * sensor_.T_imu_lidar;
   result.deskewed = std::move(frame.deskewed);
   result.stats = frame.stats;
   results_.push_back(std::move(result));

@@ -63,8 +63,6 @@ struct OdometryResult {
   /// different times are in different frames, so consumers that compose
   /// poses of different scans use T_odom_lidar and one levelling.
   Eigen::Quaterniond q_world_odom = Eigen::Quaterniond::Identity();
-  /// q_world_odom * T_odom_lidar: the pose in the levelled world as known now.
-  Pose T_world_lidar;
   Scan deskewed;  ///< the scan's points at the reference time, LiDAR frame
   OdometryScanStats stats;
 };
