@@ -104,6 +104,9 @@ int main(int argc, char** argv) {
   bool no_compress = false;
   sim_cmd->add_flag("--no-compress", no_compress, "plain bag chunks instead of LZ4");
   sim_cmd->add_option("--duration", simulate.max_duration, "stop the sensors after this time [s]");
+  sim_cmd->add_option("--start-at", simulate.start_at,
+                      "leave out the logs before this time [s]: a log that starts while moving "
+                      "(the walk stands still for its first 2 s)");
   sim_cmd->add_option("--threads", simulate.threads, "ray-casting threads (0: all cores)")
       ->capture_default_str();
   sim_cmd->add_flag(

@@ -15,11 +15,13 @@
 #include <cstdint>
 #include <deque>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "imu/imu_preintegration.h"
 #include "imu/imu_state.h"
 #include "imu/imu_state_blocks.h"
+#include "odometry/motion_init.h"
 #include "odometry/odometry_config.h"
 #include "odometry/scan_matcher.h"
 #include "odometry/voxel_map.h"
@@ -67,6 +69,13 @@ struct OdometryResult {
   OdometryScanStats stats;
 };
 
+/// How the odometry started (run report).
+struct OdometryInitialisation {
+  bool in_motion = false;  ///< initialised while moving (odometry/motion_init.h), not at rest
+  std::string not_still;   ///< in_motion: why the start was not taken as still
+  MotionInitStats motion;  ///< in_motion: what the in-motion initialisation saw
+};
+
 /// Why scans were not used (besides errors); counts in the run report.
 struct OdometryDrops {
   std::int64_t before_first_imu = 0;  ///< scan earlier than the first IMU sample
@@ -93,12 +102,19 @@ class LidarInertialOdometry {
   const OdometryDrops& drops() const { return drops_; }
   bool initialised() const { return initialised_; }
   const ImuState& initialState() const { return initial_state_; }
+  const OdometryInitialisation& initialisation() const { return initialisation_; }
 
  private:
   struct Frame;
   void tryProcess(bool at_end);
-  void initialise();
+  /// Still start when there is one, else (once the data cover the motion
+  /// window) in motion; false while waiting for more data.
+  bool initialise(bool at_end);
+  bool initialiseInMotion(bool at_end);
   void processScan(const Scan& scan);
+  /// Inserts the in-motion initialisation's scans into the local map, the
+  /// first at T_world_imu_first (the first frame's pose).
+  void seedLocalMap(const Pose& T_world_imu_first);
   void optimise(Frame& newest);
   void slide();
   void emit(Frame& frame);  ///< queues the frame's final result
@@ -113,6 +129,13 @@ class LidarInertialOdometry {
   bool initialised_ = false;
   bool origin_set_ = false;
   ImuState initial_state_;
+  OdometryInitialisation initialisation_;
+  bool still_failed_ = false;
+  /// Started in motion: the window's registered scans, inserted into the
+  /// local map with the first frame; then the reference times of those
+  /// scans, whose frames are not inserted again.
+  std::vector<MotionInitScan> seed_scans_;
+  std::vector<std::int64_t> seeded_ns_;
   std::deque<std::unique_ptr<Frame>> window_;
   VoxelMap plane_map_;
   VoxelMap edge_map_;

@@ -36,7 +36,7 @@ PipelineResult runPipeline(const std::string& log_path, const Config& config,
   SlamResult slam = backend->finish();
   report.setInput(log_path, reader->stats(), odometry.drops());
   report.setFaults(faults);
-  report.setInitialisation(odometry.initialState());
+  report.setInitialisation(odometry.initialState(), odometry.initialisation());
   report.setTrajectory(slam.trajectory);
   report.setWallTime(wall.seconds());
   if (slam.stats) report.setBackend(*slam.stats);

@@ -88,12 +88,28 @@ void RunReportBuilder::setFaults(const FaultLog& faults) {
   data_->faults = out;
 }
 
-void RunReportBuilder::setInitialisation(const ImuState& s) {
+void RunReportBuilder::setInitialisation(const ImuState& s, const OdometryInitialisation& how) {
   const Eigen::Vector3d up_imu = s.T_world_imu.rotation().conjugate() * Eigen::Vector3d::UnitZ();
   data_->initialisation = {
+      {"start", how.in_motion ? "moving" : "still"},
       {"gyro_bias_rad_s", {s.bias.gyro.x(), s.bias.gyro.y(), s.bias.gyro.z()}},
       {"accel_bias_m_s2", {s.bias.accel.x(), s.bias.accel.y(), s.bias.accel.z()}},
       {"up_in_imu_frame", {up_imu.x(), up_imu.y(), up_imu.z()}}};
+  if (how.in_motion) {
+    const MotionInitStats& m = how.motion;
+    data_->initialisation["not_still"] = how.not_still;
+    data_->initialisation["moving"] = {{"scans", m.scans},
+                                       {"window_s", m.window_s},
+                                       {"speed_m_s", m.speed_start},
+                                       {"vertical_speed_m_s", m.vertical_speed_start},
+                                       {"path_length_m", m.path_length},
+                                       {"gravity_found_m_s2", m.gravity_norm},
+                                       {"position_rms_m", m.position_rms},
+                                       {"min_matches", m.min_matches},
+                                       {"velocity_sigma_m_s", m.velocity_sigma},
+                                       {"tilt_sigma_rad", m.tilt_sigma},
+                                       {"gyro_bias_sigma_rad_s", m.gyro_bias_sigma}};
+  }
 }
 
 void RunReportBuilder::setTrajectory(const Trajectory& trajectory) {

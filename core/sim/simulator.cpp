@@ -179,6 +179,12 @@ SimulationResult simulate(const BuildingSpec& spec, const SimulationOptions& opt
   result.triangles = world.building.mesh.triangles().size();
   result.storeys = static_cast<int>(world.building.storeys.size());
   const std::int64_t start_ns = static_cast<std::int64_t>(std::llround(sensors.start_time * 1e9));
+  if (!(options.start_at >= 0.0) || options.start_at >= result.duration)
+    throw Error("simulator: start_at (" + std::to_string(options.start_at) +
+                " s) must be at least 0 and before the end of the log (" +
+                std::to_string(result.duration) + " s)");
+  // Logs cut to start at options.start_at: nothing measured before it is written.
+  const std::int64_t cut_ns = static_cast<std::int64_t>(std::llround(options.start_at * 1e9));
 
   StagingDir staging(out_dir);
   world.building.mesh.writePly(staging.file(kMeshFile));
@@ -192,14 +198,15 @@ SimulationResult simulate(const BuildingSpec& spec, const SimulationOptions& opt
   report(progress, 0.0, "IMU");
   const ImuSimulation imu =
       simulateImu(trajectory, sensors, result.duration, options.perfect_sensors, spec.seed);
-  result.imu_samples = static_cast<std::int64_t>(imu.samples.size());
+  result.imu_samples = std::count_if(imu.samples.begin(), imu.samples.end(),
+                                     [&](const ImuSample& s) { return s.stamp_ns >= cut_ns; });
   // Faults: which samples the logs leave out or hold as full-range readings.
   std::vector<double> imu_stamps(imu.samples.size());
   for (std::size_t i = 0; i < imu.samples.size(); ++i)
     imu_stamps[i] = imu.samples[i].stamp_ns * 1e-9;
   const SampleFaults imu_faults = imuSampleFaults(options.faults, imu_stamps);
   auto loggedImu = [&](std::size_t i, ImuSample& sample) {
-    if (imu_faults.drop[i]) return false;
+    if (imu_faults.drop[i] || imu.samples[i].stamp_ns < cut_ns) return false;
     sample = imu.samples[i];
     if (imu_faults.spike[i]) {
       sample.gyro = Eigen::Vector3d(kSpikeGyro, -kSpikeGyro, kSpikeGyro);
@@ -227,7 +234,8 @@ SimulationResult simulate(const BuildingSpec& spec, const SimulationOptions& opt
   writeFileAtomically(staging.file(kImuTruthFile), [&](std::ostream& out) {
     out << "# timestamp x y z qx qy qz qw (IMU frame in the world frame)\n";
     for (std::size_t i = 0; i < imu.samples.size(); ++i)
-      writeTumLine(out, start_ns + imu.samples[i].stamp_ns, imu.T_world_imu[i]);
+      if (imu.samples[i].stamp_ns >= cut_ns)
+        writeTumLine(out, start_ns + imu.samples[i].stamp_ns, imu.T_world_imu[i]);
   });
 
   LidarNoise noise;
@@ -243,7 +251,6 @@ SimulationResult simulate(const BuildingSpec& spec, const SimulationOptions& opt
         "--fault occlusion and lidar_clock_jump: only for Velodyne-layout point clouds (not "
         "the Ouster layout)");
   const int scan_count = lidar.scanCount(result.duration);
-  result.scans = scan_count;
 
   if (options.formats.pcap) {
     std::vector<ImuSample> logged;
@@ -370,8 +377,10 @@ SimulationResult simulate(const BuildingSpec& spec, const SimulationOptions& opt
       const int n = first + static_cast<int>(i);
       const std::int64_t receipt_ns = lidar.scanEndNs(n);
       writeImuUntil(receipt_ns);
+      if (scan.stamp_ns < cut_ns) continue;  // before the cut (--start-at)
       writeTumLine(lidar_truth, start_ns + scan.stamp_ns,
                    trajectory.frame(scan.stamp_ns * 1e-9, sensors.T_body_lidar).T_world_frame);
+      ++result.scans;
       result.points += static_cast<std::int64_t>(scan.points.size());
       scan.stamp_ns += start_ns;
       const double scan_time = (scan.stamp_ns - start_ns) * 1e-9;
