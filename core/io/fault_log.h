@@ -16,6 +16,7 @@ inline constexpr const char* kFaultLidarGap = "lidar_gap";
 inline constexpr const char* kFaultImuSaturation = "imu_saturation";
 inline constexpr const char* kFaultLidarOccluded = "lidar_occluded";
 inline constexpr const char* kFaultClockJump = "clock_jump";
+inline constexpr const char* kFaultTimeOffset = "time_offset";  ///< found by the odometry
 
 struct FaultEvent {
   double time = 0.0;  ///< since the log's first message [s]

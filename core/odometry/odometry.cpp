@@ -427,7 +427,65 @@ void LidarInertialOdometry::slide() {
   window_.pop_front();
 }
 
+bool LidarInertialOdometry::lidarOnlyRotation(const Frame& frame, Eigen::Quaterniond& q) const {
+  // One Gauss-Newton step of the frame's LiDAR residuals alone from its final
+  // pose (world tangent [dp, dtheta], robust weights as in the solve): where
+  // the LiDAR would put the frame without the IMU.
+  if (frame.stats.degenerate_rotation_directions > 0 ||
+      frame.matches.planes.size() + frame.matches.lines.size() < 100)
+    return false;
+  const Pose T_world_imu = frame.state().T_world_imu;
+  const Eigen::Quaterniond q_world_imu = T_world_imu.rotation();
+  Eigen::Matrix<double, 6, 6> H = Eigen::Matrix<double, 6, 6>::Zero();
+  Eigen::Matrix<double, 6, 1> g = Eigen::Matrix<double, 6, 1>::Zero();
+  const double k = config_.huber_threshold;
+  const auto robust = [k](double whitened_norm) {
+    return whitened_norm <= k ? 1.0 : k / whitened_norm;
+  };
+  for (const PlaneMatch& m : frame.matches.planes) {
+    const Eigen::Vector3d y_world = q_world_imu * m.y_imu;
+    const double e = (m.n_world.dot(y_world + T_world_imu.translation()) - m.d_world) / m.sigma;
+    Eigen::Matrix<double, 1, 6> J;
+    J << m.n_world.transpose(), y_world.cross(m.n_world).transpose();
+    J /= m.sigma;
+    const double w = robust(std::abs(e));
+    H += w * J.transpose() * J;
+    g += w * J.transpose() * e;
+  }
+  for (const LineMatch& m : frame.matches.lines) {
+    const Eigen::Vector3d y_world = q_world_imu * m.y_imu;
+    const Eigen::Vector3d x_world = y_world + T_world_imu.translation();
+    const Eigen::Vector3d e = (x_world - m.a_world).cross(m.u_world) / m.sigma;
+    const Eigen::Matrix3d U = -so3::skew(m.u_world);
+    Eigen::Matrix<double, 3, 6> J;
+    J << U, -U * so3::skew(y_world);
+    J /= m.sigma;
+    const double w = robust(e.norm());
+    H += w * J.transpose() * J;
+    g += w * J.transpose() * e;
+  }
+  const Eigen::Matrix<double, 6, 1> step = -H.ldlt().solve(g);
+  if (!step.allFinite()) return false;
+  q = so3::expQuaternion(step.tail<3>()) * q_world_imu;
+  return true;
+}
+
 void LidarInertialOdometry::emit(Frame& frame) {
+  // The time offset: the LiDAR's rotation between this scan and the one
+  // emitted before it against the gyro's.
+  Eigen::Quaterniond q_lidar;
+  const bool rotation_valid = lidarOnlyRotation(frame, q_lidar);
+  if (rotation_valid && last_rotation_valid_ && frame.from_previous &&
+      frame.from_previous->signal().knots.size() >= 2) {
+    const ImuBias bias = frame.state().bias;
+    const ImuSignal& signal = frame.from_previous->signal();
+    time_offset_.add(last_lidar_rotation_.conjugate() * q_lidar,
+                     frame.from_previous->correctedDeltas(bias).dR,
+                     signal.knots.front().gyro - bias.gyro, signal.knots.back().gyro - bias.gyro);
+  }
+  last_rotation_valid_ = rotation_valid;
+  last_lidar_rotation_ = q_lidar;
+
   OdometryResult result;
   result.scan_stamp_ns = frame.scan_stamp_ns;
   result.state = frame.state();

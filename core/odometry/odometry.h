@@ -24,6 +24,7 @@
 #include "odometry/motion_init.h"
 #include "odometry/odometry_config.h"
 #include "odometry/scan_matcher.h"
+#include "odometry/time_offset_estimator.h"
 #include "odometry/voxel_map.h"
 #include "types/imu_sample.h"
 #include "types/pose.h"
@@ -103,6 +104,9 @@ class LidarInertialOdometry {
   bool initialised() const { return initialised_; }
   const ImuState& initialState() const { return initial_state_; }
   const OdometryInitialisation& initialisation() const { return initialisation_; }
+  /// The IMU-LiDAR time offset beyond the configured one that the scans
+  /// emitted so far show (time_offset_estimator.h).
+  TimeOffsetEstimate timeOffset() const { return time_offset_.estimate(); }
 
  private:
   struct Frame;
@@ -118,6 +122,10 @@ class LidarInertialOdometry {
   void optimise(Frame& newest);
   void slide();
   void emit(Frame& frame);  ///< queues the frame's final result
+  /// Where the frame's LiDAR residuals alone put its rotation (one
+  /// Gauss-Newton step from its final pose); false when its rotation is
+  /// degenerate or it has few matches.
+  bool lidarOnlyRotation(const Frame& frame, Eigen::Quaterniond& q_world_imu) const;
   void trimImu();
 
   OdometryConfig config_;
@@ -143,6 +151,10 @@ class LidarInertialOdometry {
   /// Tilt of gravity in the map frame (ImuGravityFactor): g = Exp([t, 0]) (0, 0, -|g|).
   double tilt_[2] = {0.0, 0.0};
   OdometryDrops drops_;
+  TimeOffsetEstimator time_offset_;
+  /// LiDAR-only rotation of the last emitted scan (for the time offset), if usable.
+  bool last_rotation_valid_ = false;
+  Eigen::Quaterniond last_lidar_rotation_ = Eigen::Quaterniond::Identity();
 };
 
 }  // namespace storey

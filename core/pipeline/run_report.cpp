@@ -12,7 +12,7 @@ namespace storey {
 
 struct RunReportBuilder::Data {
   Config config;
-  nlohmann::json input, initialisation, drift;
+  nlohmann::json input, initialisation, drift, time_offset;
   nlohmann::json faults = nlohmann::json::object();
   double wall_seconds = 0.0;
   double log_seconds = 0.0;
@@ -109,6 +109,17 @@ void RunReportBuilder::setInitialisation(const ImuState& s, const OdometryInitia
                                        {"velocity_sigma_m_s", m.velocity_sigma},
                                        {"tilt_sigma_rad", m.tilt_sigma},
                                        {"gyro_bias_sigma_rad_s", m.gyro_bias_sigma}};
+  }
+}
+
+void RunReportBuilder::setTimeOffset(const TimeOffsetEstimate& t, double configured_s) {
+  data_->time_offset = {{"configured_s", configured_s},
+                        {"scan_pairs", t.pairs},
+                        {"rotation_rate_change_rms_rad_s", t.excitation},
+                        {"detected", t.detected()}};
+  if (t.valid()) {
+    data_->time_offset["offset_s"] = t.offset_s;
+    data_->time_offset["sigma_s"] = t.sigma_s;
   }
 }
 
@@ -268,6 +279,7 @@ nlohmann::json RunReportBuilder::json() const {
   report["input"] = d.input;
   report["faults"] = d.faults;
   report["imu_initialisation"] = d.initialisation;
+  if (!d.time_offset.is_null()) report["time_offset"] = d.time_offset;
   report["odometry"] = {
       {"scans", d.scans},
       {"timing_ms",

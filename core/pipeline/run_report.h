@@ -30,6 +30,8 @@ class RunReportBuilder {
   /// The faults found in the log (report.json "faults", docs/faults.md).
   void setFaults(const FaultLog& faults);
   void setInitialisation(const ImuState& initial_state, const OdometryInitialisation& how);
+  /// The IMU-LiDAR time offset the log shows beyond `configured_s` [s].
+  void setTimeOffset(const TimeOffsetEstimate& estimate, double configured_s);
   void setTrajectory(const Trajectory& trajectory);
   void setWallTime(double seconds);
   /// The SRP back end's counts and timings (absent with --no-srp).
