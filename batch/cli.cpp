@@ -95,8 +95,9 @@ int main(int argc, char** argv) {
   sim_cmd->add_option("--fault", simulate.faults,
                       "inject a fault into the logs (repeatable): imu_spike@T (one full-range "
                       "sample), imu_gap@T+D, lidar_gap@T+D, imu_saturation@T+D, occlusion@T+D, "
-                      "imu_clock_jump@T+S, lidar_clock_jump@T+S (T, D in seconds from the start; "
-                      "S the stamps' step, signed: @T+S or @T-S)");
+                      "duplicate@T+D, reorder@T+D, nan@T+D, imu_clock_jump@T+S, "
+                      "lidar_clock_jump@T+S (T, D in seconds from the start; S the stamps' step, "
+                      "signed: @T+S or @T-S)");
   bool no_progress = false;
   sim_cmd->add_flag("--no-progress", no_progress, "no progress bar");
   sim_cmd->add_flag("--perfect-sensors", simulate.perfect_sensors,

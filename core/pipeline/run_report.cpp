@@ -70,6 +70,7 @@ void RunReportBuilder::setInput(const std::string& log_path, const LogReadStats&
                   {"imu_samples_read", stats.imu_samples},
                   {"points_read", stats.points},
                   {"dropped_by_reader", dropped},
+                  {"reordered_by_reader", stats.reordered},
                   {"scans_not_processed",
                    {{"before_first_imu_sample", drops.before_first_imu},
                     {"after_last_imu_sample", drops.after_last_imu},

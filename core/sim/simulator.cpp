@@ -10,7 +10,9 @@
 #include <cstdio>
 #include <filesystem>
 #include <future>
+#include <limits>
 #include <memory>
+#include <optional>
 #include <ostream>
 #include <sstream>
 
@@ -216,15 +218,21 @@ SimulationResult simulate(const BuildingSpec& spec, const SimulationOptions& opt
       sample.gyro.x() = kSpikeGyro;
       sample.accel.z() = kSpikeAccel;
     }
+    if (imu_faults.nan[i]) sample.gyro.setConstant(std::numeric_limits<double>::quiet_NaN());
     sample.stamp_ns += imu_faults.shift_ns[i];  // the record time stays imu.samples[i]'s
     return true;
   };
   const bool lidar_gaps = hasFault(options.faults, SimFaultKind::kLidarGap);
   const bool occlusions = hasFault(options.faults, SimFaultKind::kOcclusion);
   const bool lidar_jumps = hasFault(options.faults, SimFaultKind::kLidarClockJump);
+  const bool duplicates = hasFault(options.faults, SimFaultKind::kDuplicate);
+  const bool nan_points = hasFault(options.faults, SimFaultKind::kNan);
   for (const auto& [kind, name] : {std::pair{SimFaultKind::kLidarGap, "lidar_gap"},
                                    {SimFaultKind::kOcclusion, "occlusion"},
-                                   {SimFaultKind::kLidarClockJump, "lidar_clock_jump"}}) {
+                                   {SimFaultKind::kLidarClockJump, "lidar_clock_jump"},
+                                   {SimFaultKind::kDuplicate, "duplicate"},
+                                   {SimFaultKind::kReorder, "reorder"},
+                                   {SimFaultKind::kNan, "nan"}}) {
     if (hasFault(options.faults, kind) && (formats.pcap || formats.packets))
       throw Error(std::string("--fault ") + name +
                   ": only for point clouds (not with --pcap or --packets)");
@@ -246,10 +254,11 @@ SimulationResult simulate(const BuildingSpec& spec, const SimulationOptions& opt
     noise.quantize = true;
   }
   const LidarSimulator lidar(world.building.mesh, trajectory, sensors, noise, spec.seed);
-  if ((occlusions || lidar_jumps) && lidar.beams().layout == CloudLayout::kOuster)
+  if ((occlusions || lidar_jumps || duplicates || nan_points) &&
+      lidar.beams().layout == CloudLayout::kOuster)
     throw Error(
-        "--fault occlusion and lidar_clock_jump: only for Velodyne-layout point clouds (not "
-        "the Ouster layout)");
+        "--fault occlusion, lidar_clock_jump, duplicate and nan: only for Velodyne-layout point "
+        "clouds (not the Ouster layout)");
   const int scan_count = lidar.scanCount(result.duration);
 
   if (options.formats.pcap) {
@@ -300,6 +309,19 @@ SimulationResult simulate(const BuildingSpec& spec, const SimulationOptions& opt
   const double gyro_variance = std::pow(sensors.imu.gyro_noise_density, 2) * sensors.imu.rate;
   const double accel_variance = std::pow(sensors.imu.accel_noise_density, 2) * sensors.imu.rate;
   std::size_t next_imu = 0;
+  // A sample recorded after the next one (--fault reorder) waits here.
+  struct HeldImu {
+    ImuSample sample;
+    ImuOrientation orientation;
+  };
+  std::optional<HeldImu> held_imu;
+  auto recordImu = [&](const ImuSample& sample, const ImuOrientation& orientation,
+                       std::int64_t record_ns) {
+    for (auto& log : logs) {
+      log->writeImu(sensors.imu_topic, sensors.imu_frame_id, sample, record_ns, gyro_variance,
+                    accel_variance, sensors.imu.orientation ? &orientation : nullptr);
+    }
+  };
   auto writeImuUntil = [&](std::int64_t t_ns) {
     if (!bag) return;
     while (next_imu < imu.samples.size() && imu.samples[next_imu].stamp_ns <= t_ns) {
@@ -309,12 +331,19 @@ SimulationResult simulate(const BuildingSpec& spec, const SimulationOptions& opt
         orientation.variance = sensors.imu.orientation_sigma.cwiseAbs2();
       }
       ImuSample sample;
-      const std::int64_t record_ns = start_ns + imu.samples[next_imu].stamp_ns;
-      if (!loggedImu(next_imu++, sample)) continue;
+      const std::size_t i = next_imu++;
+      const std::int64_t record_ns = start_ns + imu.samples[i].stamp_ns;
+      if (!loggedImu(i, sample)) continue;
       sample.stamp_ns += start_ns;
-      for (auto& log : logs) {
-        log->writeImu(sensors.imu_topic, sensors.imu_frame_id, sample, record_ns, gyro_variance,
-                      accel_variance, sensors.imu.orientation ? &orientation : nullptr);
+      if (imu_faults.late[i] && !held_imu) {
+        held_imu = HeldImu{sample, orientation};
+        continue;
+      }
+      for (int copy = 0; copy < (imu_faults.duplicate[i] ? 2 : 1); ++copy)
+        recordImu(sample, orientation, record_ns);
+      if (held_imu) {  // recorded now, after the sample that follows it
+        recordImu(held_imu->sample, held_imu->orientation, record_ns);
+        held_imu.reset();
       }
     }
   };
@@ -395,13 +424,21 @@ SimulationResult simulate(const BuildingSpec& spec, const SimulationOptions& opt
         }
       }
       if (lidar_jumps) scan.stamp_ns += lidarClockShiftNs(options.faults, scan_time);
+      if (nan_points && inFault(options.faults, SimFaultKind::kNan, scan_time)) {
+        for (std::size_t p = 0; p < scan.points.size(); p += 20)
+          scan.points[p].p.setConstant(std::numeric_limits<float>::quiet_NaN());
+      }
+      const int copies =
+          duplicates && inFault(options.faults, SimFaultKind::kDuplicate, scan_time) ? 2 : 1;
       for (auto& log : logs) {
         if (packets || blackout) break;
-        if (organised) {
-          log->writeOrganisedScan(sensors.points_topic, scan.frame_id, cast.organised[i],
-                                  scan.stamp_ns, start_ns + receipt_ns);
-        } else {
-          log->writeScan(sensors.points_topic, scan, start_ns + receipt_ns);
+        for (int copy = 0; copy < copies; ++copy) {
+          if (organised) {
+            log->writeOrganisedScan(sensors.points_topic, scan.frame_id, cast.organised[i],
+                                    scan.stamp_ns, start_ns + receipt_ns);
+          } else {
+            log->writeScan(sensors.points_topic, scan, start_ns + receipt_ns);
+          }
         }
       }
       if (pcap) {
@@ -421,6 +458,8 @@ SimulationResult simulate(const BuildingSpec& spec, const SimulationOptions& opt
     writePacketMessage();
   }
   writeImuUntil(INT64_MAX / 2);
+  if (held_imu)
+    recordImu(held_imu->sample, held_imu->orientation, start_ns + held_imu->sample.stamp_ns);
   report(progress, 1.0, bag ? "writing the bag" : "writing the capture");
   for (auto& log : logs) log->close();
   if (pcap) {
