@@ -29,9 +29,10 @@ PipelineResult runPipeline(const std::string& log_path, const Config& config,
   std::unique_ptr<Backend> backend = makeBackend(config.backend);
   MapScanSelector map_scans(config.map);
   RunReportBuilder report(config);
+  ScanTimings timings;
 
   // Odometry per scan, back end per keyframe, map scans chosen: one pass.
-  streamLog(log_path, *reader, odometry, *backend, map_scans, report, progress, log_time);
+  streamLog(log_path, *reader, odometry, *backend, map_scans, report, timings, progress, log_time);
   if (progress && !progress(1.0, "back end: final optimisation")) throw Cancelled();
   SlamResult slam = backend->finish();
   report.setInput(log_path, reader->stats(), odometry.drops());
@@ -54,7 +55,7 @@ PipelineResult runPipeline(const std::string& log_path, const Config& config,
   if (progress && !progress(1.0, "writing outputs")) throw Cancelled();
   report.setTotalWallTime(wall.seconds());
   report.setWarnings(warnings.warnings(), warnings.warningCount());
-  result.report_json = writeRunOutputs(out_dir, slam, report, result.files);
+  result.report_json = writeRunOutputs(out_dir, slam, timings, report, result.files);
   result.odometry = std::move(slam.odometry);
   result.trajectory = std::move(slam.trajectory);
   result.keyframes = std::move(slam.keyframes);
