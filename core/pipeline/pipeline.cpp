@@ -3,6 +3,7 @@
 #include "backend/backend.h"
 #include "common/error.h"
 #include "common/log.h"
+#include "common/memory.h"
 #include "common/stopwatch.h"
 #include "io/imu_guard.h"
 #include "io/log_reader.h"
@@ -25,22 +26,28 @@ PipelineResult runPipeline(const std::string& log_path, const Config& config,
   std::unique_ptr<LogReader> reader = std::make_unique<GuardedLogReader>(
       openLog(log_path, config.input, config.sensor), config.input, config.sensor.imu, faults);
   logInfo("reading " + reader->describe());
-  LidarInertialOdometry odometry(config.odometry, config.sensor);
+  auto odometry = std::make_unique<LidarInertialOdometry>(config.odometry, config.sensor);
   std::unique_ptr<Backend> backend = makeBackend(config.backend);
   MapScanSelector map_scans(config.map);
   RunReportBuilder report(config);
   ScanTimings timings;
 
   // Odometry per scan, back end per keyframe, map scans chosen: one pass.
-  streamLog(log_path, *reader, odometry, *backend, map_scans, report, timings, progress, log_time);
+  streamLog(log_path, *reader, *odometry, *backend, map_scans, report, timings, progress, log_time);
   if (progress && !progress(1.0, "back end: final optimisation")) throw Cancelled();
   SlamResult slam = backend->finish();
-  report.setInput(log_path, reader->stats(), odometry.drops());
+  report.setInput(log_path, reader->stats(), odometry->drops());
   report.setFaults(faults);
-  report.setInitialisation(odometry.initialState());
+  report.setInitialisation(odometry->initialState());
   report.setTrajectory(slam.trajectory);
   report.setWallTime(wall.seconds());
   if (slam.stats) report.setBackend(*slam.stats);
+  // The streaming stages are done: their memory (the odometry's local map,
+  // the graph, the log's index) goes back before the map stage needs it.
+  odometry.reset();
+  backend.reset();
+  reader.reset();
+  returnFreedMemory();
 
   // The map at the final poses, its storeys, every file.
   createOutputFolder(out_dir);
