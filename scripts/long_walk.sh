@@ -87,18 +87,19 @@ wall=$(awk -F': ' '/Elapsed \(wall clock\)/ {print $2}' "$out/time.txt")
 timing="$out/run/timing.csv"
 first=$(awk -F, 'NR == 2 {print $1}' "$timing")
 last=$(awk -F, 'END {print $1}' "$timing")
-stats() {  # reads numbers, prints "median p90 max count"
-  sort -g | awk '{v[NR] = $1} END {
-    if (NR == 0) { print "- - - 0"; exit }
+stats() {  # reads numbers, prints "median mean p90 max count"
+  sort -g | awk '{v[NR] = $1; sum += $1} END {
+    if (NR == 0) { print "- - - - 0"; exit }
     m = (NR % 2) ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2
     p = v[int(0.9 * (NR - 1)) + 1]
-    printf "%.2f %.2f %.2f %d\n", m, p, v[NR], NR }'
+    printf "%.2f %.2f %.2f %.2f %d\n", m, sum / NR, p, v[NR], NR }'
 }
 {
-  echo "odometry per scan [ms]: median p90 max scans"
+  echo "odometry per scan [ms]: median mean p90 max scans"
   echo "  first 10 min: $(awk -F, -v t0="$first" 'NR > 1 && $1 < t0 + 600 {print $2}' "$timing" | stats)"
   echo "  last 10 min:  $(awk -F, -v t1="$last" 'NR > 1 && $1 >= t1 - 600 {print $2}' "$timing" | stats)"
-  echo "back end per keyframe [ms] by 10 minutes of log: median p90 max keyframes"
+  echo "back end per keyframe [ms] by 10 minutes of log: median mean p90 max keyframes"
+  echo "  (the mean includes the whole-graph solves)"
   bins=$(awk -v a="$first" -v b="$last" 'BEGIN {print int((b - a) / 600)}')
   for ((i = 0; i <= bins; ++i)); do
     echo "  $((i * 10))-$((i * 10 + 10)) min: $(awk -F, -v t0="$first" -v i="$i" \
