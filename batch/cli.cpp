@@ -95,8 +95,9 @@ int main(int argc, char** argv) {
   sim_cmd->add_option("--fault", simulate.faults,
                       "inject a fault into the logs (repeatable): imu_spike@T (one full-range "
                       "sample), imu_gap@T+D, lidar_gap@T+D, imu_saturation@T+D, occlusion@T+D, "
-                      "imu_clock_jump@T+S, lidar_clock_jump@T+S (T, D in seconds from the start; "
-                      "S the stamps' step, signed: @T+S or @T-S)");
+                      "duplicate@T+D, reorder@T+D, nan@T+D, imu_clock_jump@T+S, "
+                      "lidar_clock_jump@T+S (T, D in seconds from the start; S the stamps' step, "
+                      "signed: @T+S or @T-S)");
   bool no_progress = false;
   sim_cmd->add_flag("--no-progress", no_progress, "no progress bar");
   sim_cmd->add_flag("--perfect-sensors", simulate.perfect_sensors,
@@ -104,6 +105,9 @@ int main(int argc, char** argv) {
   bool no_compress = false;
   sim_cmd->add_flag("--no-compress", no_compress, "plain bag chunks instead of LZ4");
   sim_cmd->add_option("--duration", simulate.max_duration, "stop the sensors after this time [s]");
+  sim_cmd->add_option("--start-at", simulate.start_at,
+                      "leave out the logs before this time [s]: a log that starts while moving "
+                      "(the walk stands still for its first 2 s)");
   sim_cmd->add_option("--threads", simulate.threads, "ray-casting threads (0: all cores)")
       ->capture_default_str();
   sim_cmd->add_flag(

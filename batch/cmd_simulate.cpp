@@ -27,6 +27,7 @@ int runSimulate(const SimulateOptions& options) {
   sim_options.perfect_sensors = options.perfect_sensors;
   sim_options.compress = options.compress;
   sim_options.max_duration = options.max_duration.value_or(0.0);
+  sim_options.start_at = options.start_at;
   sim_options.threads = options.threads;
   sim_options.formats.bag = options.bag;
   sim_options.formats.pcap = options.pcap;
@@ -42,6 +43,7 @@ int runSimulate(const SimulateOptions& options) {
   if (!options.bag && !options.pcap && options.ros2.empty())
     throw Error("--no-bag needs --pcap or --ros2 (nothing would be written)");
   if (sim_options.max_duration < 0.0) throw Error("--duration must be positive");
+  if (!(sim_options.start_at >= 0.0)) throw Error("--start-at must be 0 or more");
   if (sim_options.threads < 0) throw Error("--threads must be 0 (all cores) or more");
   const sim::SimulationResult result =
       sim::simulate(spec, sim_options, options.out_dir, bar.callback());

@@ -51,6 +51,7 @@ struct SimulateOptions {
   bool perfect_sensors = false;           ///< --perfect-sensors: no noise, dropouts or biases
   bool compress = true;                   ///< --no-compress clears it: plain (not LZ4) bag chunks
   std::optional<double> max_duration;     ///< --duration: stop the sensors after this time [s]
+  double start_at = 0.0;                  ///< --start-at: leave out the log before this time [s]
   int threads = 0;                        ///< --threads: ray-casting threads, 0 = all cores
   bool pcap = false;                      ///< --pcap: also a Velodyne capture + IMU CSV
   bool bag = true;                        ///< --no-bag clears it: no ROS1 bag

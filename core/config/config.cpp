@@ -85,6 +85,9 @@ void visitOdometry(V& v, OdometryConfig& c) {
     i.field("max_gyro_bias", ic.max_gyro_bias);
     i.field("max_gravity_error", ic.max_gravity_error);
     i.field("accel_bias_along_gravity", ic.accel_bias_along_gravity);
+    i.field("motion_start", ic.motion_start);
+    i.field("motion_window", ic.motion_window);
+    i.field("motion_min_scans", ic.motion_min_scans);
   });
   v.section("preintegration", [&](auto& p) {
     p.field("repropagate_gyro_bias_change", c.preintegration.repropagate_gyro_bias_change);

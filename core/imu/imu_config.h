@@ -31,6 +31,18 @@ struct ImuInitConfig {
   /// gravity along the vertical); false: accel bias = 0.
   bool accel_bias_along_gravity = true;
 
+  /// When the log does not start at rest (the still checks above fail):
+  /// true initialises from the first motion_window seconds of LiDAR and IMU
+  /// while moving (odometry/motion_init.h); false stops with the still
+  /// check's error.
+  bool motion_start = true;
+  /// Scans from the first one used for the in-motion initialisation [s], > 0.
+  /// 2 s: a walk accelerates and turns enough to separate gravity from the
+  /// motion, and the LiDAR-only registration does not drift yet.
+  double motion_window = 2.0;
+  /// Fewest scans in that window [-], >= 3.
+  int motion_min_scans = 8;
+
   /// Throws storey::Error naming the first field out of range.
   void validate() const;
 };

@@ -16,6 +16,10 @@ inline constexpr const char* kFaultLidarGap = "lidar_gap";
 inline constexpr const char* kFaultImuSaturation = "imu_saturation";
 inline constexpr const char* kFaultLidarOccluded = "lidar_occluded";
 inline constexpr const char* kFaultClockJump = "clock_jump";
+inline constexpr const char* kFaultTimeOffset = "time_offset";  ///< found by the odometry
+inline constexpr const char* kFaultDuplicates = "duplicate_messages";
+inline constexpr const char* kFaultOutOfOrder = "out_of_order_messages";
+inline constexpr const char* kFaultNotFinite = "not_finite_values";
 
 struct FaultEvent {
   double time = 0.0;  ///< since the log's first message [s]

@@ -5,6 +5,9 @@
 #include <iomanip>
 #include <sstream>
 
+#include "io/message_sequencer.h"
+#include "io/point_cloud_to_scan.h"
+
 namespace storey {
 namespace {
 
@@ -16,7 +19,8 @@ constexpr std::size_t kOcclusionHistory = 50;  // scans in the usual count's med
 constexpr std::size_t kOcclusionMinHistory = 10;
 constexpr std::int64_t kOcclusionMinUsual = 100;  // fewer usual points: no check
 constexpr std::int64_t kOcclusionRelearnNs = 5'000'000'000;
-constexpr double kOcclusionSkipFraction = 0.1;  // less of the usual left: skip the scan
+constexpr double kOcclusionSkipFraction = 0.1;             // less of the usual left: skip the scan
+constexpr std::int64_t kDropEpisodeGapNs = 1'000'000'000;  // a quiet second ends an episode
 
 /// Channel c of a sample: gyro x y z (0-2), accel x y z (3-5).
 double channel(const ImuSample& s, int c) {
@@ -57,6 +61,7 @@ bool GuardedLogReader::next(LogMessage& message) {
     if (!inner_->next(in)) {
       ended_ = true;
       reportClockJumps();
+      reportReaderDrops(0, true);
       endRun(nullptr);
       if (occlusion_) endOcclusion(occlusion_->last_ns + scan_period_ns_);
       release();  // the last sample has no right neighbour: it stays as it is
@@ -64,6 +69,9 @@ bool GuardedLogReader::next(LogMessage& message) {
     }
     if (!first_ns_) first_ns_ = stampOf(in);
     reportClockJumps();
+    // The time of the reader's drops: the newest stamp it read (it delivers
+    // up to its reorder window later).
+    reportReaderDrops(std::max(stampOf(in), inner_->stats().newest_read_ns), false);
     if (auto* scan = std::get_if<Scan>(&in)) {
       onScan(std::move(*scan));
     } else {
@@ -186,6 +194,76 @@ void GuardedLogReader::reportClockJumps() {
                 std::string("the ") + (j.imu ? "IMU" : "LiDAR") +
                     " stamps after it are moved back onto the other stream's clock by the step");
   }
+}
+
+void GuardedLogReader::reportReaderDrops(std::int64_t now_ns, bool at_end) {
+  const LogReadStats& stats = inner_->stats();
+  const auto fresh = [&](const char* reason) {
+    const auto it = stats.dropped.find(reason);
+    const std::int64_t count = it == stats.dropped.end() ? 0 : it->second;
+    std::int64_t& seen = drops_seen_[reason];
+    const std::int64_t added = count - seen;
+    seen = count;
+    return added;
+  };
+  const auto note = [&](const std::string& kind, std::int64_t imu, std::int64_t scans,
+                        std::int64_t points, std::int64_t reordered) {
+    if (imu + scans + points + reordered == 0) return;
+    auto it = drop_episodes_.find(kind);
+    if (it == drop_episodes_.end()) {
+      it = drop_episodes_.emplace(kind, DropEpisode{now_ns, now_ns, 0, 0, 0, 0}).first;
+    }
+    DropEpisode& e = it->second;
+    e.last_ns = now_ns;
+    e.imu += imu;
+    e.scans += scans;
+    e.points += points;
+    e.reordered += reordered;
+  };
+  // Episodes quiet for a second end before new counts start the next one.
+  for (auto it = drop_episodes_.begin(); it != drop_episodes_.end();) {
+    const std::string kind = it->first;
+    ++it;
+    if (at_end || now_ns - drop_episodes_.at(kind).last_ns > kDropEpisodeGapNs)
+      endDropEpisode(kind);
+  }
+  if (at_end) return;
+  note(kFaultDuplicates, fresh(kDropImuDuplicate), fresh(kDropScanDuplicate), 0, 0);
+  const std::int64_t reordered = stats.reordered - reordered_seen_;
+  reordered_seen_ = stats.reordered;
+  note(kFaultOutOfOrder, fresh(kDropImuBackwards) + fresh(kDropImuLate),
+       fresh(kDropScanBackwards) + fresh(kDropScanLate), 0, reordered);
+  note(kFaultNotFinite, fresh(kDropImuNotFinite), 0, fresh(kDropPointNotFinite), 0);
+}
+
+void GuardedLogReader::endDropEpisode(const std::string& kind) {
+  const DropEpisode e = drop_episodes_.at(kind);
+  drop_episodes_.erase(kind);
+  const double duration = nsToSeconds(e.last_ns - e.first_ns);
+  const auto count = [](std::int64_t n, const char* one, const char* many) {
+    return std::to_string(n) + " " + (n == 1 ? one : many);
+  };
+  std::string what, detail, handling;
+  if (kind == kFaultDuplicates) {
+    what = "repeated messages";
+    detail = count(e.imu, "IMU sample", "IMU samples") + " and " + count(e.scans, "scan", "scans") +
+             " recorded twice";
+    handling = "the repeats are dropped";
+  } else if (kind == kFaultOutOfOrder) {
+    what = "messages out of order";
+    detail = count(e.reordered, "message", "messages") + " put back in order, " +
+             count(e.imu, "IMU sample", "IMU samples") + " and " + count(e.scans, "scan", "scans") +
+             " too late for the reorder window";
+    handling =
+        "messages recorded late are put back in time order within the 1 s reorder "
+        "window; later ones are dropped";
+  } else {
+    what = "NaN or infinite values";
+    detail =
+        count(e.imu, "IMU sample", "IMU samples") + " and " + count(e.points, "point", "points");
+    handling = "dropped (an IMU sample missing is bridged like any dropout)";
+  }
+  faults_.add(kind, {sinceStart(e.first_ns), duration, detail}, what, handling);
 }
 
 void GuardedLogReader::onImu(const ImuSample& sample) {

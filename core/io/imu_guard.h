@@ -28,8 +28,10 @@
 ///   io/message_sequencer.h), reported as it appears.
 /// Each becomes a FaultLog event; messages pass on in the same order.
 #include <deque>
+#include <map>
 #include <memory>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "io/fault_log.h"
@@ -66,6 +68,11 @@ class GuardedLogReader : public LogReader {
   /// Queues a scan behind the samples held back.
   void queueScan(Scan&& scan);
   void reportClockJumps();
+  /// The reader's drops and repairs since the last call as fault episodes:
+  /// repeats, messages out of order, non-finite values; an episode ends
+  /// after a second without one (`now_ns`: the newest stamp read; at_end:
+  /// every episode ends).
+  void reportReaderDrops(std::int64_t now_ns, bool at_end);
   /// Moves the held sample and the messages after it to the output.
   void release();
   double sinceStart(std::int64_t stamp_ns) const;
@@ -99,6 +106,15 @@ class GuardedLogReader : public LogReader {
   };
   std::optional<Occlusion> occlusion_;
   std::size_t clock_jumps_reported_ = 0;
+  // Reader drops: the counts seen so far, the open episode of each kind.
+  struct DropEpisode {
+    std::int64_t first_ns = 0, last_ns = 0;
+    std::int64_t imu = 0, scans = 0, points = 0, reordered = 0;
+  };
+  std::map<std::string, std::int64_t> drops_seen_;
+  std::int64_t reordered_seen_ = 0;
+  std::map<std::string, DropEpisode> drop_episodes_;  ///< by fault kind
+  void endDropEpisode(const std::string& kind);
 };
 
 }  // namespace storey

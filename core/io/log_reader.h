@@ -32,6 +32,12 @@ struct LogReadStats {
   std::int64_t points = 0;                      ///< points delivered
   std::map<std::string, std::int64_t> dropped;  ///< reason -> count (points or messages)
   std::vector<ClockJump> clock_jumps;           ///< in the order found
+  /// Messages older than their stream's newest, put back in time order
+  /// (within the reorder window; older ones are dropped as backwards).
+  std::int64_t reordered = 0;
+  /// The newest stamp read so far (readers that order messages deliver
+  /// them up to their reorder window later) [ns].
+  std::int64_t newest_read_ns = 0;
 };
 
 class LogReader {

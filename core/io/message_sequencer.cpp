@@ -55,6 +55,7 @@ void MessageSequencer::push(Scan&& scan) {
 }
 
 void MessageSequencer::push(const ImuSample& imu) {
+  stats_.newest_read_ns = std::max(stats_.newest_read_ns, imu.stamp_ns);
   if (!imu.isFinite()) {
     ++stats_.dropped[kDropImuNotFinite];
     return;
@@ -69,6 +70,7 @@ void MessageSequencer::finish() {
 
 void MessageSequencer::route(LogMessage&& message) {
   const int kind = kindOf(message);
+  stats_.newest_read_ns = std::max(stats_.newest_read_ns, stampOf(message));
   if (suspect_) {
     const bool held = kind == suspect_->kind;
     const std::int64_t period = streams_[suspect_->kind].period_ns;
@@ -159,17 +161,40 @@ void MessageSequencer::noteStamp(int kind, std::int64_t stamp_ns) {
   stream.lead_ns = ns(stamp_ns) - ns(other.last_ns);
 }
 
+bool MessageSequencer::buffered(int kind, std::int64_t key_ns) const {
+  return std::any_of(heap_.begin(), heap_.end(),
+                     [&](const Entry& e) { return e.kind == kind && e.key_ns == key_ns; });
+}
+
+bool MessageSequencer::acceptOlder(int kind, std::int64_t stamp_ns, std::int64_t key_ns) {
+  const Stream& stream = streams_[kind];
+  if (stamp_ns == stream.last_ns || buffered(kind, key_ns)) {
+    ++stats_.dropped[kind == 0 ? kDropImuDuplicate : kDropScanDuplicate];
+    return false;
+  }
+  if (have_released_ && key_ns <= released_key_ns_) {  // too late to be put in place
+    ++stats_.dropped[kind == 0 ? kDropImuBackwards : kDropScanBackwards];
+    return false;
+  }
+  ++stats_.reordered;
+  return true;
+}
+
 void MessageSequencer::acceptScan(Scan&& scan) {
   Stream& stream = streams_[1];
+  std::int64_t key = 0;
   if (!shifted(scan.stamp_ns, stream.shift_ns, scan.stamp_ns) ||
-      (stream.have && scan.stamp_ns <= stream.last_ns)) {
-    ++stats_.dropped[scan.stamp_ns == stream.last_ns ? kDropScanDuplicate : kDropScanBackwards];
+      !shifted(scan.stamp_ns, options_.lidar_to_imu_offset_ns, key)) {
+    ++stats_.dropped[kDropScanBackwards];
+    return;
+  }
+  if (stream.have && scan.stamp_ns <= stream.last_ns) {
+    // Older than the stream's newest: a repeat, or recorded out of order.
+    if (acceptOlder(1, scan.stamp_ns, key)) insert(key, 1, LogMessage(std::move(scan)));
     return;
   }
   noteStamp(1, scan.stamp_ns);
-  std::int64_t key = 0;
-  if (!shifted(scan.stamp_ns, options_.lidar_to_imu_offset_ns, key) ||
-      (have_released_ && key < released_key_ns_)) {
+  if (have_released_ && key < released_key_ns_) {
     ++stats_.dropped[kDropScanLate];
     return;
   }
@@ -179,9 +204,12 @@ void MessageSequencer::acceptScan(Scan&& scan) {
 void MessageSequencer::acceptImu(const ImuSample& in) {
   Stream& stream = streams_[0];
   ImuSample imu = in;
-  if (!shifted(imu.stamp_ns, stream.shift_ns, imu.stamp_ns) ||
-      (stream.have && imu.stamp_ns <= stream.last_ns)) {
-    ++stats_.dropped[imu.stamp_ns == stream.last_ns ? kDropImuDuplicate : kDropImuBackwards];
+  if (!shifted(imu.stamp_ns, stream.shift_ns, imu.stamp_ns)) {
+    ++stats_.dropped[kDropImuBackwards];
+    return;
+  }
+  if (stream.have && imu.stamp_ns <= stream.last_ns) {
+    if (acceptOlder(0, imu.stamp_ns, imu.stamp_ns)) insert(imu.stamp_ns, 0, LogMessage(imu));
     return;
   }
   noteStamp(0, imu.stamp_ns);

@@ -3,6 +3,11 @@
 /// checks each stream's stamps, drops what cannot be used (counted by reason)
 /// and merges the two streams through a small bounded reorder buffer.
 ///
+/// Within a stream, a message older than the stream's newest is put back in
+/// order when it is newer than what was released and not a repeat (counted
+/// in LogReadStats::reordered); a repeat is dropped as a duplicate, an older
+/// one as backwards.
+///
 /// Order key: IMU samples by their stamp, scans by stamp + lidar-to-IMU time
 /// offset (the scan keeps its own stamp); at equal keys IMU samples come first.
 /// A message is released once a message keyed `window` later has been pushed,
@@ -92,6 +97,12 @@ class MessageSequencer {
   void resolve(bool jumped);
   void acceptScan(Scan&& scan);
   void acceptImu(const ImuSample& imu);
+  /// A message older than its stream's newest (stamp shifted, key = order
+  /// key): a duplicate of one buffered or the newest is dropped, one older
+  /// than what was released is dropped as backwards; true: insert it.
+  bool acceptOlder(int kind, std::int64_t stamp_ns, std::int64_t key_ns);
+  /// Whether a message of `kind` keyed key_ns waits in the buffer.
+  bool buffered(int kind, std::int64_t key_ns) const;
   void noteStamp(int kind, std::int64_t stamp_ns);
 
   Options options_;

@@ -7,6 +7,7 @@
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <chrono>
+#include <iomanip>
 #include <sstream>
 
 #include "common/error.h"
@@ -16,6 +17,7 @@
 #include "imu/imu_pose_table.h"
 #include "imu/so3.h"
 #include "odometry/deskew.h"
+#include "odometry/feature_frames.h"
 #include "odometry/features.h"
 #include "odometry/lidar_factors.h"
 #include "odometry/motion_prior.h"
@@ -43,22 +45,6 @@ using Clock = std::chrono::steady_clock;
 
 double msSince(Clock::time_point start) {
   return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
-
-std::vector<Eigen::Vector3d> toImuFrame(const std::vector<Eigen::Vector3f>& points_lidar,
-                                        const Pose& T_imu_lidar) {
-  std::vector<Eigen::Vector3d> out;
-  out.reserve(points_lidar.size());
-  for (const auto& p : points_lidar) out.push_back(T_imu_lidar * p.cast<double>());
-  return out;
-}
-
-std::vector<Eigen::Vector3f> toWorld(const std::vector<Eigen::Vector3d>& points_imu,
-                                     const Pose& T_world_imu) {
-  std::vector<Eigen::Vector3f> out;
-  out.reserve(points_imu.size());
-  for (const auto& p : points_imu) out.push_back((T_world_imu * p).cast<float>());
-  return out;
 }
 
 /// Smallest eigenvalue of the marginal information of block `a` (rows/cols
@@ -110,14 +96,75 @@ bool LidarInertialOdometry::nextResult(OdometryResult& result) {
   return true;
 }
 
-void LidarInertialOdometry::initialise() {
-  const ImuInitResult init = initializeImuFromStill(imu_, sensor_.imu, config_.imu_init);
+bool LidarInertialOdometry::initialise(bool at_end) {
+  if (!still_failed_) {
+    const double span = nsToSeconds(imu_.back().stamp_ns - imu_.front().stamp_ns);
+    if (span < config_.imu_init.still_window && !at_end) return false;
+    try {
+      const ImuInitResult init = initializeImuFromStill(imu_, sensor_.imu, config_.imu_init);
+      initial_state_ = init.state;
+      std::ostringstream os;
+      os << "IMU initialised from " << init.stats.samples << " still samples: gyro std "
+         << init.stats.gyro_std << " rad/s, |accel| " << init.stats.mean_accel_norm << " m/s^2";
+      logInfo(os.str());
+      return true;
+    } catch (const Error& e) {
+      if (!config_.imu_init.motion_start) throw;
+      still_failed_ = true;
+      initialisation_.not_still = e.what();
+    }
+  }
+  return initialiseInMotion(at_end);
+}
+
+bool LidarInertialOdometry::initialiseInMotion(bool at_end) {
+  const auto fail = [&](const std::string& why) {
+    return Error("the log does not start at rest (" + initialisation_.not_still +
+                 "), and initialising while moving failed: " + why +
+                 " (odometry.imu_init in the config)");
+  };
+  // Scans the IMU does not reach back to, or without points, cannot be used.
+  while (!pending_.empty() &&
+         (pending_.front().points.empty() ||
+          pending_.front().stamp_ns + time_offset_ns_ <= imu_.front().stamp_ns)) {
+    ++(pending_.front().points.empty() ? drops_.empty : drops_.before_first_imu);
+    pending_.pop_front();
+  }
+  if (pending_.empty()) {
+    if (at_end) throw fail("the log has no scan inside the IMU data");
+    return false;
+  }
+  const std::int64_t first_ns = pending_.front().stamp_ns + time_offset_ns_;
+  const std::int64_t window_end_ns = first_ns + secondsToNs(config_.imu_init.motion_window);
+  if (imu_.back().stamp_ns < window_end_ns + 200'000'000 && !at_end) return false;
+  std::vector<const Scan*> scans;
+  for (const Scan& scan : pending_) {
+    const std::int64_t ref_ns = scan.stamp_ns + time_offset_ns_;
+    if (ref_ns > window_end_ns) break;
+    const std::int64_t end_ns = ref_ns + secondsToNs(std::max(0.0f, scan.timeSpan().second));
+    if (scan.points.empty() || end_ns > imu_.back().stamp_ns) continue;
+    if (!scans.empty() && ref_ns <= scans.back()->stamp_ns + time_offset_ns_) continue;
+    scans.push_back(&scan);
+  }
+  if (scans.empty() || scans.front() != &pending_.front())
+    throw fail("the IMU data do not cover the first scan");
+  MotionInitResult init;
+  try {
+    init = initializeInMotion(imu_, scans, config_, sensor_);
+  } catch (const Error& e) {
+    throw fail(e.what());
+  }
   initial_state_ = init.state;
-  initialised_ = true;
+  seed_scans_ = std::move(init.scans);
+  initialisation_.in_motion = true;
+  initialisation_.motion = init.stats;
   std::ostringstream os;
-  os << "IMU initialised from " << init.stats.samples << " still samples: gyro std "
-     << init.stats.gyro_std << " rad/s, |accel| " << init.stats.mean_accel_norm << " m/s^2";
+  os << std::setprecision(3) << "the log does not start at rest: initialised while moving from "
+     << init.stats.scans << " scans over " << init.stats.window_s << " s (speed "
+     << init.stats.speed_start << " m/s, gravity found " << init.stats.gravity_norm
+     << " m/s^2, tilt std " << init.stats.tilt_sigma * 1e3 << " mrad)";
   logInfo(os.str());
+  return true;
 }
 
 void LidarInertialOdometry::tryProcess(bool at_end) {
@@ -126,9 +173,9 @@ void LidarInertialOdometry::tryProcess(bool at_end) {
       if (at_end && !pending_.empty()) throw Error("the log has point clouds but no IMU samples");
       return;
     }
-    const double span = nsToSeconds(imu_.back().stamp_ns - imu_.front().stamp_ns);
-    if (span < config_.imu_init.still_window && !at_end) return;
-    initialise();  // throws with an explanation when the start is not still or too short
+    // Throws with an explanation when neither a still nor a moving start works.
+    if (!initialise(at_end)) return;
+    initialised_ = true;
   }
   while (!pending_.empty()) {
     const Scan& scan = pending_.front();
@@ -205,14 +252,20 @@ void LidarInertialOdometry::processScan(const Scan& scan) {
       }
       previous.T_world_imu = Pose(q_world_imu, -(q_world_imu * T_imu_lidar.translation()));
       origin_set_ = true;
+      seedLocalMap(previous.T_world_imu);
     }
     frame->blocks = ImuStateBlocks::fromState(previous);
     // The still start levels the world frame with the accelerometer: a bias
     // orthogonal to gravity is a tilt of |b| / |g| (imu.md), hence the tilt's prior.
+    // Started in motion: the initialisation's own uncertainties where larger.
+    const MotionInitStats& moving = initialisation_.motion;
+    const bool in_motion = initialisation_.in_motion;
     frame->motion_prior = diagonalMotionPrior(
         Eigen::Map<const Vector9d>(frame->blocks.motion), Eigen::Map<const Eigen::Vector2d>(tilt_),
-        cfg.prior_velocity_sigma, cfg.prior_gyro_bias_sigma, cfg.prior_accel_bias_sigma,
-        cfg.prior_accel_bias_sigma / gravity);
+        std::max(cfg.prior_velocity_sigma, in_motion ? moving.velocity_sigma : 0.0),
+        std::max(cfg.prior_gyro_bias_sigma, in_motion ? moving.gyro_bias_sigma : 0.0),
+        cfg.prior_accel_bias_sigma,
+        std::max(cfg.prior_accel_bias_sigma / gravity, in_motion ? moving.tilt_sigma : 0.0));
   } else {
     const Frame& last = *window_.back();
     previous = last.state();
@@ -247,12 +300,29 @@ void LidarInertialOdometry::processScan(const Scan& scan) {
   frame->stats.feature_rejects = features.rejected;
   frame->stats.ms_features = msSince(t);
 
+  frame->in_map = std::binary_search(seeded_ns_.begin(), seeded_ns_.end(), frame->state_ns);
   window_.push_back(std::move(frame));
   Frame& newest = *window_.back();
   if (window_.size() > static_cast<std::size_t>(std::max(cfg.window_size, 2))) slide();
   if (window_.size() >= 2 && !plane_map_.empty()) optimise(newest);
   if (window_.size() == 1 && plane_map_.empty()) slide();  // the very first scan seeds the map
   newest.stats.ms_total = msSince(start);
+}
+
+void LidarInertialOdometry::seedLocalMap(const Pose& T_world_imu_first) {
+  if (seed_scans_.empty()) return;
+  // The initialisation's frame to the odometry's: its first scan onto ours.
+  const Pose T_world_init = T_world_imu_first * seed_scans_.front().T_world_imu.inverse();
+  for (const MotionInitScan& scan : seed_scans_) {
+    const Pose T_world_imu = T_world_init * scan.T_world_imu;
+    plane_map_.insert(toWorld(scan.planes_imu, T_world_imu),
+                      T_world_imu * sensor_.T_imu_lidar.translation());
+    edge_map_.insert(toWorld(scan.edges_imu, T_world_imu));
+    seeded_ns_.push_back(scan.state_ns);
+  }
+  std::sort(seeded_ns_.begin(), seeded_ns_.end());
+  seed_scans_.clear();
+  seed_scans_.shrink_to_fit();
 }
 
 void LidarInertialOdometry::optimise(Frame& newest) {
@@ -357,7 +427,65 @@ void LidarInertialOdometry::slide() {
   window_.pop_front();
 }
 
+bool LidarInertialOdometry::lidarOnlyRotation(const Frame& frame, Eigen::Quaterniond& q) const {
+  // One Gauss-Newton step of the frame's LiDAR residuals alone from its final
+  // pose (world tangent [dp, dtheta], robust weights as in the solve): where
+  // the LiDAR would put the frame without the IMU.
+  if (frame.stats.degenerate_rotation_directions > 0 ||
+      frame.matches.planes.size() + frame.matches.lines.size() < 100)
+    return false;
+  const Pose T_world_imu = frame.state().T_world_imu;
+  const Eigen::Quaterniond q_world_imu = T_world_imu.rotation();
+  Eigen::Matrix<double, 6, 6> H = Eigen::Matrix<double, 6, 6>::Zero();
+  Eigen::Matrix<double, 6, 1> g = Eigen::Matrix<double, 6, 1>::Zero();
+  const double k = config_.huber_threshold;
+  const auto robust = [k](double whitened_norm) {
+    return whitened_norm <= k ? 1.0 : k / whitened_norm;
+  };
+  for (const PlaneMatch& m : frame.matches.planes) {
+    const Eigen::Vector3d y_world = q_world_imu * m.y_imu;
+    const double e = (m.n_world.dot(y_world + T_world_imu.translation()) - m.d_world) / m.sigma;
+    Eigen::Matrix<double, 1, 6> J;
+    J << m.n_world.transpose(), y_world.cross(m.n_world).transpose();
+    J /= m.sigma;
+    const double w = robust(std::abs(e));
+    H += w * J.transpose() * J;
+    g += w * J.transpose() * e;
+  }
+  for (const LineMatch& m : frame.matches.lines) {
+    const Eigen::Vector3d y_world = q_world_imu * m.y_imu;
+    const Eigen::Vector3d x_world = y_world + T_world_imu.translation();
+    const Eigen::Vector3d e = (x_world - m.a_world).cross(m.u_world) / m.sigma;
+    const Eigen::Matrix3d U = -so3::skew(m.u_world);
+    Eigen::Matrix<double, 3, 6> J;
+    J << U, -U * so3::skew(y_world);
+    J /= m.sigma;
+    const double w = robust(e.norm());
+    H += w * J.transpose() * J;
+    g += w * J.transpose() * e;
+  }
+  const Eigen::Matrix<double, 6, 1> step = -H.ldlt().solve(g);
+  if (!step.allFinite()) return false;
+  q = so3::expQuaternion(step.tail<3>()) * q_world_imu;
+  return true;
+}
+
 void LidarInertialOdometry::emit(Frame& frame) {
+  // The time offset: the LiDAR's rotation between this scan and the one
+  // emitted before it against the gyro's.
+  Eigen::Quaterniond q_lidar;
+  const bool rotation_valid = lidarOnlyRotation(frame, q_lidar);
+  if (rotation_valid && last_rotation_valid_ && frame.from_previous &&
+      frame.from_previous->signal().knots.size() >= 2) {
+    const ImuBias bias = frame.state().bias;
+    const ImuSignal& signal = frame.from_previous->signal();
+    time_offset_.add(last_lidar_rotation_.conjugate() * q_lidar,
+                     frame.from_previous->correctedDeltas(bias).dR,
+                     signal.knots.front().gyro - bias.gyro, signal.knots.back().gyro - bias.gyro);
+  }
+  last_rotation_valid_ = rotation_valid;
+  last_lidar_rotation_ = q_lidar;
+
   OdometryResult result;
   result.scan_stamp_ns = frame.scan_stamp_ns;
   result.state = frame.state();

@@ -15,13 +15,16 @@
 #include <cstdint>
 #include <deque>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "imu/imu_preintegration.h"
 #include "imu/imu_state.h"
 #include "imu/imu_state_blocks.h"
+#include "odometry/motion_init.h"
 #include "odometry/odometry_config.h"
 #include "odometry/scan_matcher.h"
+#include "odometry/time_offset_estimator.h"
 #include "odometry/voxel_map.h"
 #include "types/imu_sample.h"
 #include "types/pose.h"
@@ -67,6 +70,13 @@ struct OdometryResult {
   OdometryScanStats stats;
 };
 
+/// How the odometry started (run report).
+struct OdometryInitialisation {
+  bool in_motion = false;  ///< initialised while moving (odometry/motion_init.h), not at rest
+  std::string not_still;   ///< in_motion: why the start was not taken as still
+  MotionInitStats motion;  ///< in_motion: what the in-motion initialisation saw
+};
+
 /// Why scans were not used (besides errors); counts in the run report.
 struct OdometryDrops {
   std::int64_t before_first_imu = 0;  ///< scan earlier than the first IMU sample
@@ -93,15 +103,29 @@ class LidarInertialOdometry {
   const OdometryDrops& drops() const { return drops_; }
   bool initialised() const { return initialised_; }
   const ImuState& initialState() const { return initial_state_; }
+  const OdometryInitialisation& initialisation() const { return initialisation_; }
+  /// The IMU-LiDAR time offset beyond the configured one that the scans
+  /// emitted so far show (time_offset_estimator.h).
+  TimeOffsetEstimate timeOffset() const { return time_offset_.estimate(); }
 
  private:
   struct Frame;
   void tryProcess(bool at_end);
-  void initialise();
+  /// Still start when there is one, else (once the data cover the motion
+  /// window) in motion; false while waiting for more data.
+  bool initialise(bool at_end);
+  bool initialiseInMotion(bool at_end);
   void processScan(const Scan& scan);
+  /// Inserts the in-motion initialisation's scans into the local map, the
+  /// first at T_world_imu_first (the first frame's pose).
+  void seedLocalMap(const Pose& T_world_imu_first);
   void optimise(Frame& newest);
   void slide();
   void emit(Frame& frame);  ///< queues the frame's final result
+  /// Where the frame's LiDAR residuals alone put its rotation (one
+  /// Gauss-Newton step from its final pose); false when its rotation is
+  /// degenerate or it has few matches.
+  bool lidarOnlyRotation(const Frame& frame, Eigen::Quaterniond& q_world_imu) const;
   void trimImu();
 
   OdometryConfig config_;
@@ -113,6 +137,13 @@ class LidarInertialOdometry {
   bool initialised_ = false;
   bool origin_set_ = false;
   ImuState initial_state_;
+  OdometryInitialisation initialisation_;
+  bool still_failed_ = false;
+  /// Started in motion: the window's registered scans, inserted into the
+  /// local map with the first frame; then the reference times of those
+  /// scans, whose frames are not inserted again.
+  std::vector<MotionInitScan> seed_scans_;
+  std::vector<std::int64_t> seeded_ns_;
   std::deque<std::unique_ptr<Frame>> window_;
   VoxelMap plane_map_;
   VoxelMap edge_map_;
@@ -120,6 +151,10 @@ class LidarInertialOdometry {
   /// Tilt of gravity in the map frame (ImuGravityFactor): g = Exp([t, 0]) (0, 0, -|g|).
   double tilt_[2] = {0.0, 0.0};
   OdometryDrops drops_;
+  TimeOffsetEstimator time_offset_;
+  /// LiDAR-only rotation of the last emitted scan (for the time offset), if usable.
+  bool last_rotation_valid_ = false;
+  Eigen::Quaterniond last_lidar_rotation_ = Eigen::Quaterniond::Identity();
 };
 
 }  // namespace storey

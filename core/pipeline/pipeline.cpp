@@ -1,5 +1,8 @@
 #include "pipeline/pipeline.h"
 
+#include <iomanip>
+#include <sstream>
+
 #include "backend/backend.h"
 #include "common/error.h"
 #include "common/log.h"
@@ -37,8 +40,21 @@ PipelineResult runPipeline(const std::string& log_path, const Config& config,
   if (progress && !progress(1.0, "back end: final optimisation")) throw Cancelled();
   SlamResult slam = backend->finish();
   report.setInput(log_path, reader->stats(), odometry->drops());
+  const TimeOffsetEstimate time_offset = odometry->timeOffset();
+  if (time_offset.detected()) {
+    std::ostringstream detail;
+    detail << std::setprecision(2) << "the LiDAR's rotations and the gyro's agree best "
+           << std::abs(time_offset.offset_s) * 1e3 << " +- " << time_offset.sigma_s * 1e3 << " ms "
+           << (time_offset.offset_s > 0 ? "later" : "earlier")
+           << " than sensor.time_offset_lidar_to_imu says, over " << time_offset.pairs
+           << " scan pairs";
+    faults.add(kFaultTimeOffset, {0.0, 0.0, detail.str()}, "IMU-LiDAR time offset",
+               "not corrected (the estimate is a lower bound: a third to a half of the offset "
+               "on simulated walks); calibrate sensor.time_offset_lidar_to_imu");
+  }
   report.setFaults(faults);
-  report.setInitialisation(odometry->initialState());
+  report.setTimeOffset(time_offset, config.sensor.time_offset_lidar_to_imu);
+  report.setInitialisation(odometry->initialState(), odometry->initialisation());
   report.setTrajectory(slam.trajectory);
   report.setWallTime(wall.seconds());
   if (slam.stats) report.setBackend(*slam.stats);

@@ -12,7 +12,7 @@ namespace storey {
 
 struct RunReportBuilder::Data {
   Config config;
-  nlohmann::json input, initialisation, drift;
+  nlohmann::json input, initialisation, drift, time_offset;
   nlohmann::json faults = nlohmann::json::object();
   double wall_seconds = 0.0;
   double log_seconds = 0.0;
@@ -70,6 +70,7 @@ void RunReportBuilder::setInput(const std::string& log_path, const LogReadStats&
                   {"imu_samples_read", stats.imu_samples},
                   {"points_read", stats.points},
                   {"dropped_by_reader", dropped},
+                  {"reordered_by_reader", stats.reordered},
                   {"scans_not_processed",
                    {{"before_first_imu_sample", drops.before_first_imu},
                     {"after_last_imu_sample", drops.after_last_imu},
@@ -88,12 +89,39 @@ void RunReportBuilder::setFaults(const FaultLog& faults) {
   data_->faults = out;
 }
 
-void RunReportBuilder::setInitialisation(const ImuState& s) {
+void RunReportBuilder::setInitialisation(const ImuState& s, const OdometryInitialisation& how) {
   const Eigen::Vector3d up_imu = s.T_world_imu.rotation().conjugate() * Eigen::Vector3d::UnitZ();
   data_->initialisation = {
+      {"start", how.in_motion ? "moving" : "still"},
       {"gyro_bias_rad_s", {s.bias.gyro.x(), s.bias.gyro.y(), s.bias.gyro.z()}},
       {"accel_bias_m_s2", {s.bias.accel.x(), s.bias.accel.y(), s.bias.accel.z()}},
       {"up_in_imu_frame", {up_imu.x(), up_imu.y(), up_imu.z()}}};
+  if (how.in_motion) {
+    const MotionInitStats& m = how.motion;
+    data_->initialisation["not_still"] = how.not_still;
+    data_->initialisation["moving"] = {{"scans", m.scans},
+                                       {"window_s", m.window_s},
+                                       {"speed_m_s", m.speed_start},
+                                       {"vertical_speed_m_s", m.vertical_speed_start},
+                                       {"path_length_m", m.path_length},
+                                       {"gravity_found_m_s2", m.gravity_norm},
+                                       {"position_rms_m", m.position_rms},
+                                       {"min_matches", m.min_matches},
+                                       {"velocity_sigma_m_s", m.velocity_sigma},
+                                       {"tilt_sigma_rad", m.tilt_sigma},
+                                       {"gyro_bias_sigma_rad_s", m.gyro_bias_sigma}};
+  }
+}
+
+void RunReportBuilder::setTimeOffset(const TimeOffsetEstimate& t, double configured_s) {
+  data_->time_offset = {{"configured_s", configured_s},
+                        {"scan_pairs", t.pairs},
+                        {"rotation_rate_change_rms_rad_s", t.excitation},
+                        {"detected", t.detected()}};
+  if (t.valid()) {
+    data_->time_offset["offset_s"] = t.offset_s;
+    data_->time_offset["sigma_s"] = t.sigma_s;
+  }
 }
 
 void RunReportBuilder::setTrajectory(const Trajectory& trajectory) {
@@ -252,6 +280,7 @@ nlohmann::json RunReportBuilder::json() const {
   report["input"] = d.input;
   report["faults"] = d.faults;
   report["imu_initialisation"] = d.initialisation;
+  if (!d.time_offset.is_null()) report["time_offset"] = d.time_offset;
   report["odometry"] = {
       {"scans", d.scans},
       {"timing_ms",

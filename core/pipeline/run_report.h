@@ -29,7 +29,9 @@ class RunReportBuilder {
   void setInput(const std::string& log_path, const LogReadStats& stats, const OdometryDrops& drops);
   /// The faults found in the log (report.json "faults", docs/faults.md).
   void setFaults(const FaultLog& faults);
-  void setInitialisation(const ImuState& initial_state);
+  void setInitialisation(const ImuState& initial_state, const OdometryInitialisation& how);
+  /// The IMU-LiDAR time offset the log shows beyond `configured_s` [s].
+  void setTimeOffset(const TimeOffsetEstimate& estimate, double configured_s);
   void setTrajectory(const Trajectory& trajectory);
   void setWallTime(double seconds);
   /// The SRP back end's counts and timings (absent with --no-srp).

@@ -43,6 +43,12 @@ const char* kindName(SimFaultKind kind) {
       return "imu_clock_jump";
     case SimFaultKind::kLidarClockJump:
       return "lidar_clock_jump";
+    case SimFaultKind::kDuplicate:
+      return "duplicate";
+    case SimFaultKind::kReorder:
+      return "reorder";
+    case SimFaultKind::kNan:
+      return "nan";
   }
   return "?";
 }
@@ -53,7 +59,7 @@ bool isClockJump(SimFaultKind kind) {
 
 constexpr const char* kFaultList =
     "imu_spike@T, imu_gap@T+D, lidar_gap@T+D, imu_saturation@T+D, occlusion@T+D, "
-    "imu_clock_jump@T+S, lidar_clock_jump@T+S";
+    "duplicate@T+D, reorder@T+D, nan@T+D, imu_clock_jump@T+S, lidar_clock_jump@T+S";
 
 }  // namespace
 
@@ -64,7 +70,8 @@ SimFault parseSimFault(const std::string& text) {
   bool known = false;
   for (SimFaultKind k : {SimFaultKind::kImuSpike, SimFaultKind::kImuGap, SimFaultKind::kLidarGap,
                          SimFaultKind::kImuSaturation, SimFaultKind::kOcclusion,
-                         SimFaultKind::kImuClockJump, SimFaultKind::kLidarClockJump}) {
+                         SimFaultKind::kImuClockJump, SimFaultKind::kLidarClockJump,
+                         SimFaultKind::kDuplicate, SimFaultKind::kReorder, SimFaultKind::kNan}) {
     if (kind == kindName(k)) {
       fault.kind = k;
       known = true;
@@ -117,10 +124,28 @@ SampleFaults imuSampleFaults(const std::vector<SimFault>& faults,
   out.spike.assign(stamps.size(), 0);
   out.saturate.assign(stamps.size(), 0);
   out.shift_ns.assign(stamps.size(), 0);
+  out.duplicate.assign(stamps.size(), 0);
+  out.late.assign(stamps.size(), 0);
+  out.nan.assign(stamps.size(), 0);
   for (const SimFault& f : faults) {
     const auto first = std::lower_bound(stamps.begin(), stamps.end(), f.time);
     const auto index = [&](auto it) { return static_cast<std::size_t>(it - stamps.begin()); };
-    if (f.kind == SimFaultKind::kImuSpike) {
+    std::size_t in_window = 0;  // samples of this fault's window so far
+    const auto eachInWindow = [&](auto&& apply) {
+      for (auto it = first; it != stamps.end() && *it <= f.time + f.duration; ++it)
+        apply(index(it), in_window++);
+    };
+    if (f.kind == SimFaultKind::kDuplicate) {
+      eachInWindow([&](std::size_t i, std::size_t) { out.duplicate[i] = 1; });
+    } else if (f.kind == SimFaultKind::kReorder) {
+      eachInWindow([&](std::size_t i, std::size_t n) {
+        if (n % 2 == 0 && i + 1 < stamps.size()) out.late[i] = 1;
+      });
+    } else if (f.kind == SimFaultKind::kNan) {
+      eachInWindow([&](std::size_t i, std::size_t n) {
+        if (n % 40 == 0) out.nan[i] = 1;
+      });
+    } else if (f.kind == SimFaultKind::kImuSpike) {
       if (first != stamps.end()) out.spike[index(first)] = 1;
     } else if (f.kind == SimFaultKind::kImuGap || f.kind == SimFaultKind::kImuSaturation) {
       std::vector<char>& flags = f.kind == SimFaultKind::kImuGap ? out.drop : out.saturate;
@@ -132,6 +157,12 @@ SampleFaults imuSampleFaults(const std::vector<SimFault>& faults,
     }
   }
   return out;
+}
+
+bool inFault(const std::vector<SimFault>& faults, SimFaultKind kind, double time) {
+  return std::any_of(faults.begin(), faults.end(), [&](const SimFault& f) {
+    return f.kind == kind && time >= f.time && time <= f.time + f.duration;
+  });
 }
 
 bool inLidarGap(const std::vector<SimFault>& faults, double time) {

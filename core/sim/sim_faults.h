@@ -22,6 +22,15 @@ enum class SimFaultKind {
   kOcclusion,
   kImuClockJump,    ///< IMU samples from `time` on are stamped `step` later
   kLidarClockJump,  ///< scans from `time` on are stamped `step` later
+  /// every IMU sample and scan stamped in [time, time + duration] is
+  /// recorded twice (a recorder or driver repeating messages)
+  kDuplicate,
+  /// IMU samples in [time, time + duration]: every other one is recorded
+  /// after the sample that follows it (stamps going back by one period)
+  kReorder,
+  /// [time, time + duration]: every 20th point of each scan and every 40th
+  /// IMU sample (its angular rate) are NaN
+  kNan,
 };
 
 struct SimFault {
@@ -41,18 +50,20 @@ inline constexpr float kOcclusionRange = 0.35f;
 inline constexpr double kOcclusionHalfSector = 2.356194490192345;
 
 /// "imu_spike@T", "imu_gap@T+D", "lidar_gap@T+D", "imu_saturation@T+D",
-/// "occlusion@T+D", "imu_clock_jump@T+S" or "lidar_clock_jump@T+S" (seconds
+/// "occlusion@T+D", "duplicate@T+D", "reorder@T+D", "nan@T+D",
+/// "imu_clock_jump@T+S" or "lidar_clock_jump@T+S" (seconds
 /// since the log's start; S signed: @T+S or @T-S); storey::Error naming the
 /// text otherwise.
 SimFault parseSimFault(const std::string& text);
 std::string toString(const SimFault& fault);
 
 /// Which samples of time-ordered stamps [s since the start] the faults remove
-/// (`drop`), replace with a full-range reading (`spike`) or clip at the range
-/// on one gyro and one accelerometer axis (`saturate`), one flag per stamp;
-/// `shift_ns`: what the clock jumps add to each stamp [ns].
+/// (`drop`), replace with a full-range reading (`spike`), clip at the range
+/// on one gyro and one accelerometer axis (`saturate`), record twice
+/// (`duplicate`), record after the next sample (`late`) or make NaN (`nan`),
+/// one flag per stamp; `shift_ns`: what the clock jumps add to each stamp [ns].
 struct SampleFaults {
-  std::vector<char> drop, spike, saturate;
+  std::vector<char> drop, spike, saturate, duplicate, late, nan;
   std::vector<std::int64_t> shift_ns;
 };
 SampleFaults imuSampleFaults(const std::vector<SimFault>& faults,
@@ -61,6 +72,8 @@ SampleFaults imuSampleFaults(const std::vector<SimFault>& faults,
 bool inLidarGap(const std::vector<SimFault>& faults, double time);
 /// Whether a scan stamped `time` [s since the start] is occluded.
 bool inOcclusion(const std::vector<SimFault>& faults, double time);
+/// Whether a fault of `kind` covers a scan stamped `time` [s since the start].
+bool inFault(const std::vector<SimFault>& faults, SimFaultKind kind, double time);
 /// What the LiDAR clock jumps add to the stamp of a scan stamped `time` [ns].
 std::int64_t lidarClockShiftNs(const std::vector<SimFault>& faults, double time);
 /// Whether `faults` hold one of `kind`.

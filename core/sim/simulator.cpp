@@ -10,7 +10,9 @@
 #include <cstdio>
 #include <filesystem>
 #include <future>
+#include <limits>
 #include <memory>
+#include <optional>
 #include <ostream>
 #include <sstream>
 
@@ -179,6 +181,12 @@ SimulationResult simulate(const BuildingSpec& spec, const SimulationOptions& opt
   result.triangles = world.building.mesh.triangles().size();
   result.storeys = static_cast<int>(world.building.storeys.size());
   const std::int64_t start_ns = static_cast<std::int64_t>(std::llround(sensors.start_time * 1e9));
+  if (!(options.start_at >= 0.0) || options.start_at >= result.duration)
+    throw Error("simulator: start_at (" + std::to_string(options.start_at) +
+                " s) must be at least 0 and before the end of the log (" +
+                std::to_string(result.duration) + " s)");
+  // Logs cut to start at options.start_at: nothing measured before it is written.
+  const std::int64_t cut_ns = static_cast<std::int64_t>(std::llround(options.start_at * 1e9));
 
   StagingDir staging(out_dir);
   world.building.mesh.writePly(staging.file(kMeshFile));
@@ -192,14 +200,15 @@ SimulationResult simulate(const BuildingSpec& spec, const SimulationOptions& opt
   report(progress, 0.0, "IMU");
   const ImuSimulation imu =
       simulateImu(trajectory, sensors, result.duration, options.perfect_sensors, spec.seed);
-  result.imu_samples = static_cast<std::int64_t>(imu.samples.size());
+  result.imu_samples = std::count_if(imu.samples.begin(), imu.samples.end(),
+                                     [&](const ImuSample& s) { return s.stamp_ns >= cut_ns; });
   // Faults: which samples the logs leave out or hold as full-range readings.
   std::vector<double> imu_stamps(imu.samples.size());
   for (std::size_t i = 0; i < imu.samples.size(); ++i)
     imu_stamps[i] = imu.samples[i].stamp_ns * 1e-9;
   const SampleFaults imu_faults = imuSampleFaults(options.faults, imu_stamps);
   auto loggedImu = [&](std::size_t i, ImuSample& sample) {
-    if (imu_faults.drop[i]) return false;
+    if (imu_faults.drop[i] || imu.samples[i].stamp_ns < cut_ns) return false;
     sample = imu.samples[i];
     if (imu_faults.spike[i]) {
       sample.gyro = Eigen::Vector3d(kSpikeGyro, -kSpikeGyro, kSpikeGyro);
@@ -209,15 +218,21 @@ SimulationResult simulate(const BuildingSpec& spec, const SimulationOptions& opt
       sample.gyro.x() = kSpikeGyro;
       sample.accel.z() = kSpikeAccel;
     }
+    if (imu_faults.nan[i]) sample.gyro.setConstant(std::numeric_limits<double>::quiet_NaN());
     sample.stamp_ns += imu_faults.shift_ns[i];  // the record time stays imu.samples[i]'s
     return true;
   };
   const bool lidar_gaps = hasFault(options.faults, SimFaultKind::kLidarGap);
   const bool occlusions = hasFault(options.faults, SimFaultKind::kOcclusion);
   const bool lidar_jumps = hasFault(options.faults, SimFaultKind::kLidarClockJump);
+  const bool duplicates = hasFault(options.faults, SimFaultKind::kDuplicate);
+  const bool nan_points = hasFault(options.faults, SimFaultKind::kNan);
   for (const auto& [kind, name] : {std::pair{SimFaultKind::kLidarGap, "lidar_gap"},
                                    {SimFaultKind::kOcclusion, "occlusion"},
-                                   {SimFaultKind::kLidarClockJump, "lidar_clock_jump"}}) {
+                                   {SimFaultKind::kLidarClockJump, "lidar_clock_jump"},
+                                   {SimFaultKind::kDuplicate, "duplicate"},
+                                   {SimFaultKind::kReorder, "reorder"},
+                                   {SimFaultKind::kNan, "nan"}}) {
     if (hasFault(options.faults, kind) && (formats.pcap || formats.packets))
       throw Error(std::string("--fault ") + name +
                   ": only for point clouds (not with --pcap or --packets)");
@@ -227,7 +242,8 @@ SimulationResult simulate(const BuildingSpec& spec, const SimulationOptions& opt
   writeFileAtomically(staging.file(kImuTruthFile), [&](std::ostream& out) {
     out << "# timestamp x y z qx qy qz qw (IMU frame in the world frame)\n";
     for (std::size_t i = 0; i < imu.samples.size(); ++i)
-      writeTumLine(out, start_ns + imu.samples[i].stamp_ns, imu.T_world_imu[i]);
+      if (imu.samples[i].stamp_ns >= cut_ns)
+        writeTumLine(out, start_ns + imu.samples[i].stamp_ns, imu.T_world_imu[i]);
   });
 
   LidarNoise noise;
@@ -238,12 +254,12 @@ SimulationResult simulate(const BuildingSpec& spec, const SimulationOptions& opt
     noise.quantize = true;
   }
   const LidarSimulator lidar(world.building.mesh, trajectory, sensors, noise, spec.seed);
-  if ((occlusions || lidar_jumps) && lidar.beams().layout == CloudLayout::kOuster)
+  if ((occlusions || lidar_jumps || duplicates || nan_points) &&
+      lidar.beams().layout == CloudLayout::kOuster)
     throw Error(
-        "--fault occlusion and lidar_clock_jump: only for Velodyne-layout point clouds (not "
-        "the Ouster layout)");
+        "--fault occlusion, lidar_clock_jump, duplicate and nan: only for Velodyne-layout point "
+        "clouds (not the Ouster layout)");
   const int scan_count = lidar.scanCount(result.duration);
-  result.scans = scan_count;
 
   if (options.formats.pcap) {
     std::vector<ImuSample> logged;
@@ -293,6 +309,19 @@ SimulationResult simulate(const BuildingSpec& spec, const SimulationOptions& opt
   const double gyro_variance = std::pow(sensors.imu.gyro_noise_density, 2) * sensors.imu.rate;
   const double accel_variance = std::pow(sensors.imu.accel_noise_density, 2) * sensors.imu.rate;
   std::size_t next_imu = 0;
+  // A sample recorded after the next one (--fault reorder) waits here.
+  struct HeldImu {
+    ImuSample sample;
+    ImuOrientation orientation;
+  };
+  std::optional<HeldImu> held_imu;
+  auto recordImu = [&](const ImuSample& sample, const ImuOrientation& orientation,
+                       std::int64_t record_ns) {
+    for (auto& log : logs) {
+      log->writeImu(sensors.imu_topic, sensors.imu_frame_id, sample, record_ns, gyro_variance,
+                    accel_variance, sensors.imu.orientation ? &orientation : nullptr);
+    }
+  };
   auto writeImuUntil = [&](std::int64_t t_ns) {
     if (!bag) return;
     while (next_imu < imu.samples.size() && imu.samples[next_imu].stamp_ns <= t_ns) {
@@ -302,12 +331,19 @@ SimulationResult simulate(const BuildingSpec& spec, const SimulationOptions& opt
         orientation.variance = sensors.imu.orientation_sigma.cwiseAbs2();
       }
       ImuSample sample;
-      const std::int64_t record_ns = start_ns + imu.samples[next_imu].stamp_ns;
-      if (!loggedImu(next_imu++, sample)) continue;
+      const std::size_t i = next_imu++;
+      const std::int64_t record_ns = start_ns + imu.samples[i].stamp_ns;
+      if (!loggedImu(i, sample)) continue;
       sample.stamp_ns += start_ns;
-      for (auto& log : logs) {
-        log->writeImu(sensors.imu_topic, sensors.imu_frame_id, sample, record_ns, gyro_variance,
-                      accel_variance, sensors.imu.orientation ? &orientation : nullptr);
+      if (imu_faults.late[i] && !held_imu) {
+        held_imu = HeldImu{sample, orientation};
+        continue;
+      }
+      for (int copy = 0; copy < (imu_faults.duplicate[i] ? 2 : 1); ++copy)
+        recordImu(sample, orientation, record_ns);
+      if (held_imu) {  // recorded now, after the sample that follows it
+        recordImu(held_imu->sample, held_imu->orientation, record_ns);
+        held_imu.reset();
       }
     }
   };
@@ -370,8 +406,10 @@ SimulationResult simulate(const BuildingSpec& spec, const SimulationOptions& opt
       const int n = first + static_cast<int>(i);
       const std::int64_t receipt_ns = lidar.scanEndNs(n);
       writeImuUntil(receipt_ns);
+      if (scan.stamp_ns < cut_ns) continue;  // before the cut (--start-at)
       writeTumLine(lidar_truth, start_ns + scan.stamp_ns,
                    trajectory.frame(scan.stamp_ns * 1e-9, sensors.T_body_lidar).T_world_frame);
+      ++result.scans;
       result.points += static_cast<std::int64_t>(scan.points.size());
       scan.stamp_ns += start_ns;
       const double scan_time = (scan.stamp_ns - start_ns) * 1e-9;
@@ -386,13 +424,21 @@ SimulationResult simulate(const BuildingSpec& spec, const SimulationOptions& opt
         }
       }
       if (lidar_jumps) scan.stamp_ns += lidarClockShiftNs(options.faults, scan_time);
+      if (nan_points && inFault(options.faults, SimFaultKind::kNan, scan_time)) {
+        for (std::size_t p = 0; p < scan.points.size(); p += 20)
+          scan.points[p].p.setConstant(std::numeric_limits<float>::quiet_NaN());
+      }
+      const int copies =
+          duplicates && inFault(options.faults, SimFaultKind::kDuplicate, scan_time) ? 2 : 1;
       for (auto& log : logs) {
         if (packets || blackout) break;
-        if (organised) {
-          log->writeOrganisedScan(sensors.points_topic, scan.frame_id, cast.organised[i],
-                                  scan.stamp_ns, start_ns + receipt_ns);
-        } else {
-          log->writeScan(sensors.points_topic, scan, start_ns + receipt_ns);
+        for (int copy = 0; copy < copies; ++copy) {
+          if (organised) {
+            log->writeOrganisedScan(sensors.points_topic, scan.frame_id, cast.organised[i],
+                                    scan.stamp_ns, start_ns + receipt_ns);
+          } else {
+            log->writeScan(sensors.points_topic, scan, start_ns + receipt_ns);
+          }
         }
       }
       if (pcap) {
@@ -412,6 +458,8 @@ SimulationResult simulate(const BuildingSpec& spec, const SimulationOptions& opt
     writePacketMessage();
   }
   writeImuUntil(INT64_MAX / 2);
+  if (held_imu)
+    recordImu(held_imu->sample, held_imu->orientation, start_ns + held_imu->sample.stamp_ns);
   report(progress, 1.0, bag ? "writing the bag" : "writing the capture");
   for (auto& log : logs) log->close();
   if (pcap) {

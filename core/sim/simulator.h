@@ -54,8 +54,12 @@ struct SimulationOptions {
   SimulationFormats formats;
   bool perfect_sensors = false;  ///< no noise, dropouts or biases (tests)
   double max_duration = 0.0;     ///< stop the sensors after this time; 0 = the whole walk [s]
-  bool compress = true;          ///< LZ4 chunks in the bag
-  int threads = 0;               ///< ray-casting threads; 0 = all cores
+  /// Leave out everything before this time: the logs (and their ground truth)
+  /// start in the middle of the walk, as a log cut from a longer recording
+  /// does (no still start when it is past the walk's still time) [s], >= 0.
+  double start_at = 0.0;
+  bool compress = true;  ///< LZ4 chunks in the bag
+  int threads = 0;       ///< ray-casting threads; 0 = all cores
   /// Faults injected into the logs (not into the ground truth); LiDAR gaps
   /// only with point clouds (not with pcap or packets).
   std::vector<SimFault> faults;

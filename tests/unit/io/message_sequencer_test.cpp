@@ -73,13 +73,14 @@ TEST(IoMessageSequencer, LidarToImuOffsetOrdersButKeepsStamp) {
   EXPECT_EQ(out, expected);
 }
 
-TEST(IoMessageSequencer, BackwardDuplicateAndNonFiniteImuDropped) {
+TEST(IoMessageSequencer, LateImuPutInOrderDuplicateAndNonFiniteDropped) {
   LogReadStats stats;
   MessageSequencer sequencer({}, stats);
   sequencer.push(imu(10 * kMs));
   sequencer.push(imu(20 * kMs));
-  sequencer.push(imu(15 * kMs));  // backwards
-  sequencer.push(imu(20 * kMs));  // duplicate
+  sequencer.push(imu(15 * kMs));  // recorded late: put back in order
+  sequencer.push(imu(20 * kMs));  // duplicate of the newest
+  sequencer.push(imu(15 * kMs));  // duplicate of one waiting in the buffer
   ImuSample bad = imu(25 * kMs);
   bad.gyro.x() = std::numeric_limits<double>::quiet_NaN();
   sequencer.push(bad);
@@ -89,25 +90,36 @@ TEST(IoMessageSequencer, BackwardDuplicateAndNonFiniteImuDropped) {
   sequencer.push(imu(30 * kMs));
   const auto out = drain(sequencer);
   const std::vector<std::pair<char, std::int64_t>> expected = {
-      {'i', 10 * kMs}, {'i', 20 * kMs}, {'i', 30 * kMs}};
+      {'i', 10 * kMs}, {'i', 15 * kMs}, {'i', 20 * kMs}, {'i', 30 * kMs}};
   EXPECT_EQ(out, expected);
-  EXPECT_EQ(stats.dropped[kDropImuBackwards], 1);
-  EXPECT_EQ(stats.dropped[kDropImuDuplicate], 1);
+  EXPECT_EQ(stats.reordered, 1);
+  EXPECT_EQ(stats.dropped[kDropImuBackwards], 0);
+  EXPECT_EQ(stats.dropped[kDropImuDuplicate], 2);
   EXPECT_EQ(stats.dropped[kDropImuNotFinite], 2);
-  EXPECT_EQ(stats.imu_samples, 3);
+  EXPECT_EQ(stats.imu_samples, 4);
 }
 
-TEST(IoMessageSequencer, BackwardAndDuplicateScansDropped) {
+TEST(IoMessageSequencer, ScansTooLateToPlaceAndDuplicatesDropped) {
   LogReadStats stats;
   MessageSequencer sequencer({}, stats);
+  std::vector<std::int64_t> out;
+  LogMessage m;
+  const auto popReady = [&] {
+    while (sequencer.pop(m)) out.push_back(std::get<Scan>(m).stamp_ns);
+  };
   sequencer.push(scan(100 * kMs));
-  sequencer.push(scan(100 * kMs));
-  sequencer.push(scan(50 * kMs));
-  sequencer.push(scan(200 * kMs));
-  const auto out = drain(sequencer);
-  ASSERT_EQ(out.size(), 2u);
+  sequencer.push(scan(100 * kMs));  // duplicate
+  sequencer.push(scan(50 * kMs));   // late but nothing later released yet: put in place
+  sequencer.push(scan(1200 * kMs));
+  popReady();                      // 50 and 100 are out (a window older than 1200)
+  sequencer.push(scan(80 * kMs));  // older than what was released: dropped
+  sequencer.push(scan(1300 * kMs));
+  sequencer.finish();
+  popReady();
+  EXPECT_EQ(out, (std::vector<std::int64_t>{50 * kMs, 100 * kMs, 1200 * kMs, 1300 * kMs}));
   EXPECT_EQ(stats.dropped[kDropScanDuplicate], 1);
   EXPECT_EQ(stats.dropped[kDropScanBackwards], 1);
+  EXPECT_EQ(stats.reordered, 1);
 }
 
 TEST(IoMessageSequencer, BufferIsBoundedByWindowAndCount) {
