@@ -61,7 +61,7 @@ int main(int argc, char** argv) {
   run_cmd
       ->add_option("--preset", run.preset,
                    "without LOG: the simulated building to map (tiny, default, building-a, "
-                   "building-b, or random:SEED)")
+                   "building-b, long-walk, or random:SEED)")
       ->capture_default_str();
   addCommonOptions(*run_cmd, run.common);
 
@@ -77,10 +77,10 @@ int main(int argc, char** argv) {
       "simulate a multi-storey building walk: LiDAR (VLP-16, VLP-32C, HDL-32E, OS1-64) + IMU in a "
       "ROS1 bag and/or a Velodyne pcap, with ground truth");
   sim_cmd
-      ->add_option(
-          "BUILDING", simulate.preset_or_spec,
-          "preset (tiny, default, building-a, building-b), random:SEED (a random building, "
-          "sensor rig and walk) or building spec YAML")
+      ->add_option("BUILDING", simulate.preset_or_spec,
+                   "preset (tiny, default, building-a, building-b, long-walk), random:SEED (a "
+                   "random building, "
+                   "sensor rig and walk) or building spec YAML")
       ->capture_default_str();
   sim_cmd->add_option("-o,--out", simulate.out_dir, "output folder")->required();
   sim_cmd->add_option("--seed", simulate.seed, "random seed (default: the spec's)");

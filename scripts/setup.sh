@@ -11,7 +11,7 @@ PACKAGES=(
   libpcl-dev libceres-dev libcgal-dev libvtk9-dev qtbase5-dev libeigen3-dev
   libtbb-dev libembree-dev librosbag-dev libsensor-msgs-dev libpcap-dev
   nlohmann-json3-dev libcli11-dev libyaml-cpp-dev libgtest-dev libgmock-dev
-  libbenchmark-dev xvfb xauth
+  libbenchmark-dev xvfb xauth time
   libsqlite3-dev libzstd-dev liblz4-dev zlib1g-dev
   cloudcompare libqt5opengl5-dev dpkg-dev
   slurmctld slurmd slurm-client munge

@@ -59,7 +59,10 @@ void BackendConfig::validate() const {
           "must be within [0, 45)");
   require(g.max_iterations >= 1, "graph.max_iterations", "must be >= 1");
   require(g.window_keyframes >= 0, "graph.window_keyframes", "must be >= 0");
+  require(g.window_held_observations >= 0, "graph.window_held_observations", "must be >= 0");
   require(g.full_every >= 1, "graph.full_every", "must be >= 1");
+  require(g.full_every_share >= 0 && g.full_every_share <= 1, "graph.full_every_share",
+          "must be in [0, 1]");
   require(g.final_iterations >= 0, "graph.final_iterations", "must be >= 0");
   require(g.outlier_chi2 > 0, "graph.outlier_chi2", "must be positive");
 }

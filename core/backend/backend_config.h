@@ -72,10 +72,16 @@ struct GraphConfig {
   int max_iterations = 6;            ///< Levenberg-Marquardt iterations per keyframe [>= 1]
   int window_keyframes = 40;         ///< newest keyframes optimised at each keyframe (older ones
                                      ///< held fixed); 0 = always the whole graph [>= 0]
-  int full_every = 25;               ///< the whole graph every n optimisations [>= 1]
-  int final_iterations = 50;         ///< iterations of the whole-graph solve at the end [>= 0]
-  double outlier_chi2 = 16.27;       ///< observations with a larger whitened residual after the
-                                     ///< final solve are reported as wrong associations [> 0]
+  /// Per plane free in a windowed solve, its observations by keyframes older
+  /// than the window (held fixed) kept in the solve: the newest n [>= 0; 0 = all].
+  int window_held_observations = 100;
+  int full_every = 25;             ///< the whole graph every n optimisations [>= 1]
+  double full_every_share = 0.04;  ///< ...or after the graph grew by this share of its
+                                   ///< keyframes, whichever is later (bounded whole-graph
+                                   ///< work per keyframe, solve_schedule.h) [0, 1]; 0 = off
+  int final_iterations = 50;       ///< iterations of the whole-graph solve at the end [>= 0]
+  double outlier_chi2 = 16.27;     ///< observations with a larger whitened residual after the
+                                   ///< final solve are reported as wrong associations [> 0]
 };
 
 /// The back end (SRP constraints, keyframe graph).

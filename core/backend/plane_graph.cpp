@@ -51,6 +51,19 @@ struct PlaneGraph::Impl {
 
   explicit Impl(const GraphConfig& c) : config(c), plane_loss(c.plane_loss_width) {}
 
+  /// Index into l.observations before which observations by keyframes older
+  /// than `first_free` are left out of a solve: all but the newest `cap` of
+  /// them (cap <= 0: none left out). The order of the rest is kept.
+  std::size_t firstHeldObservation(const Landmark& l, int first_free, int cap) const {
+    if (cap <= 0) return 0;
+    int held = 0;
+    for (std::size_t i = l.observations.size(); i-- > 0;) {
+      if (observations[static_cast<std::size_t>(l.observations[i])].kf < first_free && ++held > cap)
+        return i + 1;
+    }
+    return 0;
+  }
+
   void addKeyframeBlocks(ceres::Problem& problem, int i, bool constant) {
     Keyframe& k = kfs[static_cast<std::size_t>(i)];
     if (problem.HasParameterBlock(k.q)) return;  // constancy is decided once per solve
@@ -170,7 +183,10 @@ GraphSolveStats PlaneGraph::optimise(int window, int max_iterations) {
     problem.AddResidualBlock(e.cost.get(), nullptr, a.q, a.t, b.q, b.t);
     ++stats.residual_blocks;
   }
-  // Every observation of a free plane (observers older than the window held fixed).
+  // Every observation of a free plane by the window's keyframes; of those by
+  // older keyframes (held fixed) the newest window_held_observations, so a
+  // windowed solve does not grow with how often its planes were seen before.
+  const int held_cap = first_free > 0 ? g.config.window_held_observations : 0;
   for (int p : free_planes) {
     Impl::Landmark& l = g.planes[static_cast<std::size_t>(p)];
     problem.AddParameterBlock(l.n, 3, &g.sphere_manifold);
@@ -179,8 +195,13 @@ GraphSolveStats PlaneGraph::optimise(int window, int max_iterations) {
       problem.AddResidualBlock(l.prior.get(), nullptr, l.n);
       ++stats.residual_blocks;
     }
-    for (int o : l.observations) {
-      const Impl::Observation& obs = g.observations[static_cast<std::size_t>(o)];
+    const std::size_t first_held = g.firstHeldObservation(l, first_free, held_cap);
+    for (std::size_t i = 0; i < l.observations.size(); ++i) {
+      const Impl::Observation& obs = g.observations[static_cast<std::size_t>(l.observations[i])];
+      if (i < first_held && obs.kf < first_free) {
+        ++stats.held_observations_left_out;
+        continue;
+      }
       g.addKeyframeBlocks(problem, obs.kf, obs.kf < first_free);
       Impl::Keyframe& k = g.kfs[static_cast<std::size_t>(obs.kf)];
       problem.AddResidualBlock(obs.cost.get(), &g.plane_loss, k.q, k.t, l.n, l.d);

@@ -23,6 +23,8 @@ struct GraphSolveStats {
   bool full = false;  ///< the whole graph (else the newest keyframes only)
   int iterations = 0;
   int free_keyframes = 0, free_planes = 0, residual_blocks = 0;
+  /// Observations by held keyframes left out (GraphConfig::window_held_observations).
+  int held_observations_left_out = 0;
   double initial_cost = 0.0, final_cost = 0.0;
   double ms = 0.0;  ///< wall time of problem set-up and solve [ms]
 };
@@ -52,6 +54,8 @@ class PlaneGraph {
 
   /// Levenberg-Marquardt from the current estimate: the newest `window`
   /// keyframes and the planes they see are free (window <= 0: everything).
+  /// A free plane keeps every observation by the window's keyframes and the
+  /// newest GraphConfig::window_held_observations by older (held) ones.
   GraphSolveStats optimise(int window, int max_iterations);
 
   int keyframes() const;

@@ -5,6 +5,7 @@
 
 #include "backend/keyframe_rule.h"
 #include "backend/plane_graph.h"
+#include "backend/solve_schedule.h"
 #include "common/error.h"
 
 namespace storey {
@@ -52,6 +53,7 @@ struct SrpBackend::Impl {
   std::vector<int> last_seen_kf;         // per landmark
   std::vector<int> observation_count;    // per landmark
   std::vector<double> observation_chi2;  // after finish()
+  int since_whole_solve = -1;            // optimisations since the last whole-graph one
   // The graph's correction of the odometry as of the last solve:
   // T_world_lidar = T_world_odom * T_odom_lidar (the odometry's levelling of
   // its first scan until the first solve).
@@ -165,11 +167,13 @@ struct SrpBackend::Impl {
     if (!constraint) return;
 
     // Optimise: the newest keyframes (pulled to the planes older keyframes
-    // saw), the whole graph every full_every solves and at the end (then the
-    // correction of a revisited plane reaches back over the whole loop).
+    // saw), the whole graph on the schedule of solve_schedule.h and at the
+    // end (then the correction of a revisited plane reaches back over the
+    // whole loop).
     const GraphConfig& g = config.graph;
     levelFirstKeyframe();
-    const bool full = window <= 0 || (stats.optimisations % std::max(g.full_every, 1)) == 0;
+    const bool full = backend::wholeGraphSolveDue(g, since_whole_solve, graph.keyframes());
+    since_whole_solve = full ? 1 : since_whole_solve + 1;
     if (revisit) ++stats.revisits;
     const backend::GraphSolveStats solve = graph.optimise(full ? 0 : window, g.max_iterations);
     ++stats.optimisations;

@@ -148,7 +148,9 @@ void visitBackend(V& v, BackendConfig& c) {
     g.field("first_tilt_sigma", x.first_tilt_sigma);
     g.field("max_iterations", x.max_iterations);
     g.field("window_keyframes", x.window_keyframes);
+    g.field("window_held_observations", x.window_held_observations);
     g.field("full_every", x.full_every);
+    g.field("full_every_share", x.full_every_share);
     g.field("final_iterations", x.final_iterations);
     g.field("outlier_chi2", x.outlier_chi2);
   });

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "common/error.h"
+#include "map/chunked_array.h"
 #include "map/voxel_hash.h"
 
 namespace storey {
@@ -163,16 +164,18 @@ MapCloud MapBuilder::build(const std::vector<Pose>& T_world_lidar_per_scan,
   }
   const double inv = 1.0 / config_.voxel_size;
   // Voxel accumulators: sums relative to the voxel's corner (small numbers,
-  // exact enough in float), first time and keyframe.
+  // exact enough in float); the first return's scan (its keyframe and stamp)
+  // and time offset. 28 bytes a voxel, in chunks (no reallocation spikes).
   struct Acc {
     float sx, sy, sz, si;
     std::uint32_t n;
-    std::int32_t keyframe;
-    double time;
+    std::uint32_t entry;  ///< into entries_
+    float dt;             ///< time offset of the first return in its scan [s]
   };
-  std::vector<Acc> acc;
-  std::vector<std::uint64_t> keys;
-  VoxelIndex index(static_cast<std::size_t>(stored_points_ / 4 + 1024));
+  ChunkedArray<Acc> acc;
+  ChunkedArray<std::uint64_t> keys;
+  // Grown with the map (not sized by the points stored, which grow with the log).
+  VoxelIndex index(std::size_t{1} << 20);
   std::vector<StoredPoint> points;
   for (std::size_t e = 0; e < entries_.size(); ++e) {
     const Entry& entry = entries_[e];
@@ -180,7 +183,6 @@ MapCloud MapBuilder::build(const std::vector<Pose>& T_world_lidar_per_scan,
     const Pose& T = T_world_lidar_per_scan[static_cast<std::size_t>(entry.map_scan)];
     const Eigen::Matrix3d R = T.rotationMatrix();
     const Eigen::Vector3d t = T.translation();
-    const double stamp = nsToSeconds(entry.stamp_ns);
     for (const StoredPoint& sp : points) {
       const Eigen::Vector3d p = R * Eigen::Vector3d(sp.x, sp.y, sp.z) + t;
       const Eigen::Vector3d cell(std::floor(p.x() * inv), std::floor(p.y() * inv),
@@ -192,8 +194,8 @@ MapCloud MapBuilder::build(const std::vector<Pose>& T_world_lidar_per_scan,
       bool inserted = false;
       const std::uint32_t v = index.findOrInsert(key, inserted);
       if (inserted) {
-        acc.push_back({local.x(), local.y(), local.z(), sp.intensity, 1, entry.keyframe,
-                       stamp + static_cast<double>(sp.dt)});
+        acc.push_back({local.x(), local.y(), local.z(), sp.intensity, 1,
+                       static_cast<std::uint32_t>(e), sp.dt});
         keys.push_back(key);
       } else {
         Acc& a = acc[v];
@@ -217,6 +219,7 @@ MapCloud MapBuilder::build(const std::vector<Pose>& T_world_lidar_per_scan,
   for (std::size_t v = 0; v < acc.size(); ++v) {
     const Acc& a = acc[v];
     const std::uint64_t key = keys[v];
+    const Entry& first = entries_[a.entry];
     const Eigen::Vector3d corner(
         static_cast<double>(static_cast<std::int64_t>((key >> 42) & kMask) - kBias),
         static_cast<double>(static_cast<std::int64_t>((key >> 21) & kMask) - kBias),
@@ -226,10 +229,13 @@ MapCloud MapBuilder::build(const std::vector<Pose>& T_world_lidar_per_scan,
         corner * config_.voxel_size + Eigen::Vector3d(a.sx / n, a.sy / n, a.sz / n);
     cloud.positions.push_back(p.cast<float>());
     cloud.intensity.push_back(a.si / n);
-    cloud.time.push_back(a.time);
-    cloud.keyframe.push_back(a.keyframe);
+    cloud.time.push_back(nsToSeconds(first.stamp_ns) + static_cast<double>(a.dt));
+    cloud.keyframe.push_back(first.keyframe);
     cloud.storey.push_back(kNoStorey);
     cloud.flags.push_back(0);
+    // The accumulators read so far are freed as the cloud fills (its pages are touched as written).
+    acc.releaseBefore(v);
+    keys.releaseBefore(v);
   }
   return cloud;
 }

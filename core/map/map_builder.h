@@ -9,11 +9,14 @@
 /// by default in an anonymous temporary file (MapConfig::spill_to_disk), so
 /// the RAM held while the log streams is a few bytes per keyframe. build()
 /// streams the scans back one by one into a hash grid of the map's voxels
-/// (32-byte accumulator + 8-byte key + 24-48 bytes of open-addressing table
-/// per voxel), then emits the MapCloud (31 bytes a point): peak memory is
-/// proportional to the map, not to the log (building-a, 717 keyframes, 6.3 M
-/// map points: 260 MB of scans on disk; peak RSS of odometry + map stage
-/// 634 MB, of which 175 MB before the map stage).
+/// (28-byte accumulator + 8-byte key, in chunks that grow without
+/// reallocation, + 16-32 bytes of open-addressing table per voxel, grown
+/// with the map), then emits the MapCloud (31 bytes a point), freeing the
+/// accumulators as it goes: peak memory is proportional to the map, not to
+/// the log (building-a, 717 keyframes, 6.3 M map points: 260 MB of scans on
+/// disk; peak RSS of odometry + map stage 634 MB, of which 175 MB before the
+/// map stage, measured before the chunked accumulators; the one-hour
+/// long-walk: docs/benchmarks.md).
 #include <cstdint>
 #include <cstdio>
 #include <memory>

@@ -1,7 +1,8 @@
 #pragma once
 /// A compact open-addressing hash from a voxel's integer coordinates to a
-/// dense index (0, 1, 2, ... in insertion order): 12 bytes a slot, grown at
-/// half load. Used by map assembly and by the storey stage's subsampling.
+/// dense index (0, 1, 2, ... in insertion order): 12 bytes a slot, grown
+/// (doubled) at three-quarter load, so 16-32 bytes an entry. Used by map
+/// assembly and by the storey stage's subsampling.
 #include <Eigen/Core>
 #include <cmath>
 #include <cstdint>
@@ -36,7 +37,7 @@ class VoxelIndex {
 
   /// Index of `key`, inserting it (as index size()) when new; `inserted` tells which.
   std::uint32_t findOrInsert(std::uint64_t key, bool& inserted) {
-    if (2 * (size_ + 1) > keys_.size()) rehash(keys_.size() * 2);
+    if (4 * (size_ + 1) > 3 * keys_.size()) rehash(keys_.size() * 2);
     std::size_t slot = slotOf(key);
     while (true) {
       if (keys_[slot] == kEmpty) {
@@ -66,7 +67,7 @@ class VoxelIndex {
   static constexpr std::uint64_t kEmpty = std::numeric_limits<std::uint64_t>::max();
   static std::size_t capacityFor(std::size_t n) {
     std::size_t c = 16;
-    while (c < 2 * n) c *= 2;
+    while (3 * c < 4 * n) c *= 2;
     return c;
   }
   std::size_t slotOf(std::uint64_t key) const {

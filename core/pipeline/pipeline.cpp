@@ -6,6 +6,7 @@
 #include "backend/backend.h"
 #include "common/error.h"
 #include "common/log.h"
+#include "common/memory.h"
 #include "common/stopwatch.h"
 #include "io/imu_guard.h"
 #include "io/log_reader.h"
@@ -28,17 +29,18 @@ PipelineResult runPipeline(const std::string& log_path, const Config& config,
   std::unique_ptr<LogReader> reader = std::make_unique<GuardedLogReader>(
       openLog(log_path, config.input, config.sensor), config.input, config.sensor.imu, faults);
   logInfo("reading " + reader->describe());
-  LidarInertialOdometry odometry(config.odometry, config.sensor);
+  auto odometry = std::make_unique<LidarInertialOdometry>(config.odometry, config.sensor);
   std::unique_ptr<Backend> backend = makeBackend(config.backend);
   MapScanSelector map_scans(config.map);
   RunReportBuilder report(config);
+  ScanTimings timings;
 
   // Odometry per scan, back end per keyframe, map scans chosen: one pass.
-  streamLog(log_path, *reader, odometry, *backend, map_scans, report, progress, log_time);
+  streamLog(log_path, *reader, *odometry, *backend, map_scans, report, timings, progress, log_time);
   if (progress && !progress(1.0, "back end: final optimisation")) throw Cancelled();
   SlamResult slam = backend->finish();
-  report.setInput(log_path, reader->stats(), odometry.drops());
-  const TimeOffsetEstimate time_offset = odometry.timeOffset();
+  report.setInput(log_path, reader->stats(), odometry->drops());
+  const TimeOffsetEstimate time_offset = odometry->timeOffset();
   if (time_offset.detected()) {
     std::ostringstream detail;
     detail << std::setprecision(2) << "the LiDAR's rotations and the gyro's agree best "
@@ -52,10 +54,16 @@ PipelineResult runPipeline(const std::string& log_path, const Config& config,
   }
   report.setFaults(faults);
   report.setTimeOffset(time_offset, config.sensor.time_offset_lidar_to_imu);
-  report.setInitialisation(odometry.initialState(), odometry.initialisation());
+  report.setInitialisation(odometry->initialState(), odometry->initialisation());
   report.setTrajectory(slam.trajectory);
   report.setWallTime(wall.seconds());
   if (slam.stats) report.setBackend(*slam.stats);
+  // The streaming stages are done: their memory (the odometry's local map,
+  // the graph, the log's index) goes back before the map stage needs it.
+  odometry.reset();
+  backend.reset();
+  reader.reset();
+  returnFreedMemory();
 
   // The map at the final poses, its storeys, every file.
   createOutputFolder(out_dir);
@@ -70,7 +78,7 @@ PipelineResult runPipeline(const std::string& log_path, const Config& config,
   if (progress && !progress(1.0, "writing outputs")) throw Cancelled();
   report.setTotalWallTime(wall.seconds());
   report.setWarnings(warnings.warnings(), warnings.warningCount());
-  result.report_json = writeRunOutputs(out_dir, slam, report, result.files);
+  result.report_json = writeRunOutputs(out_dir, slam, timings, report, result.files);
   result.odometry = std::move(slam.odometry);
   result.trajectory = std::move(slam.trajectory);
   result.keyframes = std::move(slam.keyframes);

@@ -27,15 +27,17 @@ void createOutputFolder(const std::string& out_dir) {
 }
 
 std::string writeRunOutputs(const std::string& out_dir, const SlamResult& slam,
-                            RunReportBuilder& report, std::vector<std::string>& files) {
+                            const ScanTimings& timings, RunReportBuilder& report,
+                            std::vector<std::string>& files) {
   const fs::path out(out_dir);
   writeTum((out / "odometry.tum").string(), slam.odometry);
   writeTum((out / "trajectory.tum").string(), slam.trajectory);
   writeKitti((out / "trajectory_kitti.txt").string(), (out / "trajectory_kitti_times.txt").string(),
              slam.trajectory);
   writeTum((out / "keyframes.tum").string(), slam.keyframes);
+  timings.write((out / "timing.csv").string());
   files.insert(files.end(), {"odometry.tum", "trajectory.tum", "trajectory_kitti.txt",
-                             "trajectory_kitti_times.txt", "keyframes.tum"});
+                             "trajectory_kitti_times.txt", "keyframes.tum", "timing.csv"});
   if (slam.planes) {
     writePlanesJson((out / "planes.json").string(), *slam.planes);
     files.push_back("planes.json");

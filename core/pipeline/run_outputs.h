@@ -6,6 +6,7 @@
 
 #include "backend/backend.h"
 #include "pipeline/run_report.h"
+#include "pipeline/scan_timings.h"
 
 namespace storey {
 
@@ -13,11 +14,13 @@ namespace storey {
 /// removes the temporaries a killed earlier run left in it.
 void createOutputFolder(const std::string& out_dir);
 
-/// Writes the trajectories (TUM, KITTI), keyframes.tum, planes.json (or
-/// removes a stale one when the back end is off), then report.json,
+/// Writes the trajectories (TUM, KITTI), keyframes.tum, timing.csv (the
+/// per-scan wall times), planes.json (or removes a stale one when the back
+/// end is off), then report.json,
 /// report.md and report.html (without images) last. `files` (relative to out_dir) is extended with
 /// them. Returns the report as written (report.json's text).
 std::string writeRunOutputs(const std::string& out_dir, const SlamResult& slam,
-                            RunReportBuilder& report, std::vector<std::string>& files);
+                            const ScanTimings& timings, RunReportBuilder& report,
+                            std::vector<std::string>& files);
 
 }  // namespace storey

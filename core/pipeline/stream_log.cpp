@@ -3,6 +3,7 @@
 #include <optional>
 
 #include "common/error.h"
+#include "common/stopwatch.h"
 
 namespace storey {
 
@@ -10,10 +11,13 @@ namespace {
 
 /// One final odometry result through the back end into the map selection.
 void passOn(OdometryResult& scan, Backend& backend, MapScanSelector& map_scans,
-            RunReportBuilder& report) {
+            RunReportBuilder& report, ScanTimings& timings) {
   report.addScan(scan);
+  const double time = scan.deskewed.time();
+  const Stopwatch backend_watch;
   const BackendDecision decision =
-      backend.addScan(scan.deskewed.time(), scan.T_odom_lidar, scan.q_world_odom, scan.deskewed);
+      backend.addScan(time, scan.T_odom_lidar, scan.q_world_odom, scan.deskewed);
+  timings.add(time, scan.stats.ms_total, decision.keyframe, 1e3 * backend_watch.seconds());
   map_scans.addScan(std::move(scan.deskewed), decision.T_world_lidar, decision.keyframe);
 }
 
@@ -21,12 +25,12 @@ void passOn(OdometryResult& scan, Backend& backend, MapScanSelector& map_scans,
 
 void streamLog(const std::string& log_path, LogReader& reader, LidarInertialOdometry& odometry,
                Backend& backend, MapScanSelector& map_scans, RunReportBuilder& report,
-               const ProgressFn& progress, const LogTimeFn& log_time) {
+               ScanTimings& timings, const ProgressFn& progress, const LogTimeFn& log_time) {
   std::size_t scans = 0;
   OdometryResult result;
   auto drain = [&] {
     while (odometry.nextResult(result)) {
-      passOn(result, backend, map_scans, report);
+      passOn(result, backend, map_scans, report, timings);
       ++scans;
     }
   };

@@ -10,17 +10,19 @@
 #include "map/map_scan_selector.h"
 #include "odometry/odometry.h"
 #include "pipeline/run_report.h"
+#include "pipeline/scan_timings.h"
 
 namespace storey {
 
 /// Reads the whole log: every message into the odometry, every final
 /// odometry result into the back end, then its decision into the map scan
-/// selection and its counts into the report. Ends with the odometry flushed
-/// and the last map scan in. With each progress report, `log_time` (when
-/// set) gets the log time read so far. Throws storey::Error when no scan
-/// could be processed, storey::Cancelled when `progress` returns false.
+/// selection, its counts into the report and its wall times into `timings`. Ends with the odometry
+/// flushed and the last map scan in. With each progress report, `log_time` (when set) gets the log
+/// time read so far. Throws storey::Error when no scan could be processed, storey::Cancelled when
+/// `progress` returns false.
 void streamLog(const std::string& log_path, LogReader& reader, LidarInertialOdometry& odometry,
                Backend& backend, MapScanSelector& map_scans, RunReportBuilder& report,
-               const ProgressFn& progress, const LogTimeFn& log_time = nullptr);
+               ScanTimings& timings, const ProgressFn& progress,
+               const LogTimeFn& log_time = nullptr);
 
 }  // namespace storey

@@ -59,6 +59,7 @@ class Generator {
     if (part_ == Part::kBuilding) {
       addArms();
       addRoute();
+      repeatRoute(spec_.robot.rounds);
     }
     return std::move(out_);
   }
@@ -776,6 +777,15 @@ class Generator {
     along(x_turn_west_, -lane, floorZ(0));
     at(x_turn_west_, lane, floorZ(0), walk);
     along(x_start_, lane, floorZ(0));
+  }
+
+  /// robot.rounds > 1: the route walked again from its start, round after
+  /// round. It ends where it starts, heading east on the north lane as it
+  /// started, so the rounds join without a stop or a reversal.
+  void repeatRoute(int rounds) {
+    const std::vector<RouteVertex> once = out_.route;
+    for (int r = 1; r < rounds; ++r)
+      out_.route.insert(out_.route.end(), once.begin() + 1, once.end());
   }
 
   const BuildingSpec& spec_;

@@ -163,6 +163,7 @@ void visitRobot(V& v, RobotSpec& r) {
   v.field("still_time", r.still_time);
   v.field("start_offset", r.start_offset);
   v.field("rooms_entered", r.rooms_entered);
+  v.field("rounds", r.rounds);
   v.section("gait", [&](auto& g) {
     g.field("frequency_hz", r.gait.frequency);
     g.field("bounce", r.gait.bounce);
@@ -433,6 +434,7 @@ void BuildingSpec::validate() const {
     check(l >= 6.0 && l <= 100.0, *this, "building.arms.lengths", "values must be in [6, 100] m");
   check(robot.rooms_entered >= 0 && robot.rooms_entered <= 4, *this, "robot.rooms_entered",
         "must be in [0, 4]");
+  check(robot.rounds >= 1 && robot.rounds <= 20, *this, "robot.rounds", "must be in [1, 20]");
   check(robot.walk_speed > 0.05 && robot.walk_speed <= 2.0, *this, "robot.walk_speed",
         "must be in (0.05, 2] m/s");
   check(robot.stair_speed > 0.05 && robot.stair_speed <= 1.0, *this, "robot.stair_speed",

@@ -143,6 +143,9 @@ struct RobotSpec {
   /// Rooms of the main corridor the walk goes into on each storey it walks
   /// (through the door, round the middle of the room and out) [0, 4].
   int rooms_entered = 0;
+  /// Times the route is walked, one round after the other without stopping
+  /// (it ends where and heading the way it starts), for long logs [1, 20].
+  int rounds = 1;
   GaitSpec gait;  ///< motion kLegged
   /// Motion kHandheld.
   HandheldGaitSpec handheld_gait;

@@ -19,13 +19,14 @@ double mm(double v) {
 }
 
 /// `motion`'s robot defaults, keeping where the walk goes: the lanes, the
-/// start and the still time of `robot`.
+/// start, the still time, the rooms and the rounds of `robot`.
 RobotSpec withMotion(const RobotSpec& robot, RobotMotion motion) {
   RobotSpec moved = robotForMotion(motion);
   moved.lane_offset = robot.lane_offset;
   moved.start_offset = robot.start_offset;
   moved.still_time = robot.still_time;
   moved.rooms_entered = robot.rooms_entered;
+  moved.rounds = robot.rounds;
   return moved;
 }
 

@@ -44,7 +44,9 @@ struct Fixture {
 double maxTranslationError(const PlaneGraph& g, const Fixture& f) {
   double e = 0;
   for (int i = 0; i < g.keyframes(); ++i)
-    e = std::max(e, (g.keyframePose(i).translation() - f.truth[static_cast<std::size_t>(i)].translation()).norm());
+    e = std::max(
+        e, (g.keyframePose(i).translation() - f.truth[static_cast<std::size_t>(i)].translation())
+               .norm());
   return e;
 }
 
@@ -125,6 +127,31 @@ TEST(PlaneGraph, WindowedSolvesThenAFullSolveConverge) {
   EXPECT_TRUE(g.keyframePose(5).isApprox(f.odometry[5], 1e-12, 1e-12));
   g.optimise(0, 50);
   EXPECT_LT(maxTranslationError(g, f), 0.01);
+}
+
+/// A windowed solve keeps, per free plane, only the newest
+/// window_held_observations of the observations by held keyframes (every one
+/// by the window's keyframes); a whole-graph solve keeps all.
+TEST(PlaneGraph, WindowedSolveKeepsTheNewestHeldObservations) {
+  const Fixture f;  // 30 keyframes, each observing the 4 planes
+  GraphConfig all;
+  all.window_held_observations = 0;
+  GraphConfig capped;
+  capped.window_held_observations = 5;
+  PlaneGraph g_all{all}, g_capped{capped};
+  build(g_all, f, -1);
+  build(g_capped, f, -1);
+  const GraphSolveStats w_all = g_all.optimise(10, 10);
+  const GraphSolveStats w_capped = g_capped.optimise(10, 10);
+  EXPECT_EQ(w_all.held_observations_left_out, 0);
+  // 20 held keyframes see each of the 4 planes; 5 of each kept.
+  EXPECT_EQ(w_capped.held_observations_left_out, 4 * (20 - 5));
+  EXPECT_EQ(w_capped.residual_blocks, w_all.residual_blocks - 4 * (20 - 5));
+  EXPECT_EQ(w_capped.free_keyframes, 10);
+  EXPECT_EQ(w_capped.free_planes, 4);
+  const GraphSolveStats full = g_capped.optimise(0, 50);
+  EXPECT_EQ(full.held_observations_left_out, 0);
+  EXPECT_LT(maxTranslationError(g_capped, f), 0.01);
 }
 
 }  // namespace

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
 #include <nlohmann/json.hpp>
 
 #include "common/atomic_file.h"
@@ -35,7 +36,7 @@ TEST_F(MapEndToEnd, TinyPresetMapMatchesTheMeshAndTheFloor) {
   for (const char* f : {"map.las", "map.ply", "map.pcd", "storeys.json", "storeys/storey_00.las",
                         "storeys/storey_00.ply", "trajectory.tum", "odometry.tum", "keyframes.tum",
                         "trajectory_kitti.txt", "trajectory_kitti_times.txt", "planes.json",
-                        "report.json", "report.md"}) {
+                        "timing.csv", "report.json", "report.md"}) {
     EXPECT_TRUE(fs::exists(out + "/" + f)) << f;
     EXPECT_NE(std::find(r.files.begin(), r.files.end(), f), r.files.end()) << f << " listed";
   }
@@ -45,6 +46,20 @@ TEST_F(MapEndToEnd, TinyPresetMapMatchesTheMeshAndTheFloor) {
     ASSERT_LT(r.map->keyframe[i], static_cast<int>(r.keyframes.size()));
   }
   EXPECT_EQ(readTum(out + "/keyframes.tum").size(), r.keyframes.size());
+  // timing.csv: a line per scan of the trajectory; the keyframes flagged
+  // (all but the last scan, which finish() makes the last keyframe).
+  std::ifstream timing(out + "/timing.csv");
+  std::string line;
+  std::getline(timing, line);
+  EXPECT_EQ(line, "time,odometry_ms,backend_ms,keyframe");
+  std::size_t timed_scans = 0, timed_keyframes = 0;
+  while (std::getline(timing, line)) {
+    ++timed_scans;
+    timed_keyframes += line.back() == '1';
+  }
+  EXPECT_EQ(timed_scans, r.trajectory.size());
+  EXPECT_GE(timed_keyframes + 1, r.keyframes.size());
+  EXPECT_LE(timed_keyframes, r.keyframes.size());
   // The last scan is a keyframe (the end of the walk is in the map).
   EXPECT_DOUBLE_EQ(r.keyframes.back().time, r.trajectory.back().time);
 

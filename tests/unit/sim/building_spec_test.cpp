@@ -154,6 +154,7 @@ TEST(SimSpec, BadSensorAndMotionValuesNameTheirKey) {
       {"robot:\n  handheld_gait: {frequency_hz: 6}\n", "robot.handheld_gait.frequency_hz"},
       {"robot:\n  handheld_gait: {slope_pitch: 1.5}\n", "robot.handheld_gait.slope_pitch"},
       {"robot:\n  handheld_gait: {yaw_deg: 20}\n", "robot.handheld_gait.yaw_deg"},
+      {"robot:\n  rounds: 0\n", "robot.rounds"},
   };
   for (const auto& [yaml, key] : cases) {
     try {
@@ -223,8 +224,8 @@ TEST(SimSpec, PresetWalksHaveTheAdvertisedSize) {
   };
   for (const Expect& e :
        {Expect{"tiny", 1, 8, 16, 15, 28}, Expect{"default", 3, 100, 250, 120, 420},
-        Expect{"building-a", 5, 350, 460, 450, 1100},
-        Expect{"building-b", 6, 540, 680, 700, 1500}}) {
+        Expect{"building-a", 5, 350, 460, 450, 1100}, Expect{"building-b", 6, 540, 680, 700, 1500},
+        Expect{"long-walk", 6, 1900, 2100, 3300, 3900}}) {
     const World world = makeWorld(loadBuildingSpec(e.name));
     EXPECT_EQ(static_cast<int>(world.building.storeys.size()), e.storeys) << e.name;
     EXPECT_GE(world.trajectory.pathLength(), e.min_length) << e.name;

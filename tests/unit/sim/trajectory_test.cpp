@@ -79,6 +79,41 @@ TEST(SimTrajectory, StandsStillThenReturnsExactlyToStart) {
   EXPECT_GT(traj.body(traj.stillTime() + 3.0).v_world.norm(), 0.2);
 }
 
+/// robot.rounds: the route walked again and again without stopping between
+/// rounds (a long log from one building), still only at both ends.
+TEST(SimTrajectory, RoundsWalkTheRouteAgainWithoutStopping) {
+  BuildingSpec spec = loadBuildingSpec("default");
+  spec.robot.rounds = 3;
+  // The key reads back from the spec file a simulation writes.
+  EXPECT_EQ(parseBuildingSpec(buildingSpecYaml(spec), "spec.yaml").robot.rounds, 3);
+  const World world = makeWorld(spec);
+  const Trajectory& once = defaultWorld().trajectory;
+  const Trajectory& traj = world.trajectory;
+  EXPECT_NEAR(traj.pathLength(), 3.0 * once.pathLength(), 0.001 * once.pathLength());
+  const double walk_once = once.duration() - 2.0 * once.stillTime();
+  const double walk = traj.duration() - 2.0 * traj.stillTime();
+  // No stop and restart between rounds: shorter than three walks, not by much.
+  EXPECT_LT(walk, 3.0 * walk_once);
+  EXPECT_GT(walk, 3.0 * walk_once - 10.0);
+  EXPECT_TRUE(traj.T_world_body(0.0).isApprox(traj.T_world_body(traj.duration()), 1e-9, 1e-9));
+  // Passing the start between the rounds, at walking speed.
+  const Eigen::Vector3d start = traj.T_world_body(0.0).translation();
+  for (int round = 1; round < 3; ++round) {
+    const double around = traj.stillTime() + round * walk / 3.0;
+    double closest = 1e9, speed = 0.0;
+    for (double t = around - 20.0; t < around + 20.0; t += 0.01) {
+      const FrameKinematics k = traj.body(t);
+      const double d = (k.T_world_frame.translation() - start).norm();
+      if (d < closest) {
+        closest = d;
+        speed = k.v_world.norm();
+      }
+    }
+    EXPECT_LT(closest, 0.05) << "round " << round;
+    EXPECT_GT(speed, 0.5) << "round " << round;
+  }
+}
+
 TEST(SimTrajectory, LidarStartsAtTheWorldOrigin) {
   const BuildingSpec spec = loadBuildingSpec("default");
   const Pose T_world_lidar =

@@ -1,0 +1,13 @@
+#pragma once
+/// Handing memory the program freed back to the system, so the resident size
+/// (RSS) follows what is in use: after a stage frees many small blocks (the
+/// odometry's local map, the back end's graph), the C library keeps them for
+/// later small allocations, while the next stage allocates large arrays.
+
+namespace storey {
+
+/// Returns the free memory of the C library's heap to the system (glibc's
+/// malloc_trim; nothing elsewhere).
+void returnFreedMemory();
+
+}  // namespace storey
