@@ -83,8 +83,8 @@ void ImuPreintegration::integrate() {
   const double sbg2 = noise_.gyro_random_walk * noise_.gyro_random_walk;
   const double sba2 = noise_.accel_random_walk * noise_.accel_random_walk;
   const double gap_threshold = imuGapThreshold(noise_);
-  const double dg2 = noise_.dropout_gyro_sigma * noise_.dropout_gyro_sigma;
-  const double da2 = noise_.dropout_accel_sigma * noise_.dropout_accel_sigma;
+  const double dg2 = noise_.dropout_gyro_density * noise_.dropout_gyro_density;
+  const double da2 = noise_.dropout_accel_density * noise_.dropout_accel_density;
 
   Eigen::Quaterniond q = Eigen::Quaterniond::Identity();
   Eigen::Vector3d v = Eigen::Vector3d::Zero();
@@ -140,11 +140,12 @@ void ImuPreintegration::integrate() {
     //   P' = A P A^T + (A C) B^T + B (A C)^T + B (S + Qwhite) B^T,  C' = A C + B S.
     Eigen::Matrix<double, 6, 1> q_white;
     q_white << sg2 / dt, sg2 / dt, sg2 / dt, sa2 / dt, sa2 / dt, sa2 / dt;
-    if (k1.sample_spacing > gap_threshold || k1.after_removed) {
-      // A dropout: the signal here is an interpolation, its mean over the
-      // step unknown to dropout_*_sigma (docs/method/imu.md, "Dropouts").
-      q_white.head<3>().array() += dg2;
-      q_white.tail<3>().array() += da2;
+    if (k1.sample_spacing > gap_threshold || k1.dropout) {
+      // A dropout: the signal here is an interpolation or filled in, its mean
+      // over the step unknown to a white noise of the dropout densities
+      // (docs/method/imu.md, "Dropouts").
+      q_white.head<3>().array() += dg2 / dt;
+      q_white.tail<3>().array() += da2 / dt;
     }
     const Matrix96 AC = A.apply(C);
     const Matrix96 B_SQ = B * (S + q_white).asDiagonal();

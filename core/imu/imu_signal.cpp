@@ -79,7 +79,7 @@ ImuSignal sliceImuSignal(const ImuSample* samples, std::size_t count, std::int64
     if (s->stamp_ns == prev->stamp_ns) continue;  // duplicate stamp
     signal.knots.push_back(knotAt(*s, start_ns));
     signal.knots.back().sample_spacing = nsToSeconds(s->stamp_ns - prev->stamp_ns);
-    signal.knots.back().after_removed = s->after_removed;
+    signal.knots.back().dropout = s->after_removed || s->filled || prev->filled;
     prev = s;
   }
   if (last->stamp_ns == end_ns) {
@@ -89,7 +89,7 @@ ImuSignal sliceImuSignal(const ImuSample* samples, std::size_t count, std::int64
     signal.knots.push_back(interpolate(*prev, *last, end_ns, start_ns));
   }
   signal.knots.back().sample_spacing = nsToSeconds(last->stamp_ns - prev->stamp_ns);
-  signal.knots.back().after_removed = last->after_removed;
+  signal.knots.back().dropout = last->after_removed || last->filled || prev->filled;
   for (std::size_t k = 1; k < signal.knots.size(); ++k) {
     signal.max_gap = std::max(signal.max_gap, signal.knots[k].t - signal.knots[k - 1].t);
   }

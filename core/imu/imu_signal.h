@@ -22,9 +22,10 @@ struct ImuKnot {
   /// previous knot to this one lies (that interval's length unless an end
   /// was interpolated; 0 for the first knot) [s]: a dropout when long.
   double sample_spacing = 0.0;
-  /// Samples between those two were removed (ImuSample::after_removed): a
-  /// dropout whatever sample_spacing.
-  bool after_removed = false;
+  /// The interval is a dropout whatever sample_spacing: samples before its
+  /// end were removed (ImuSample::after_removed), or an end is not measured
+  /// but filled in (ImuSample::filled).
+  bool dropout = false;
 };
 
 struct ImuSignal {

@@ -19,6 +19,7 @@
 #include "odometry/deskew.h"
 #include "odometry/feature_frames.h"
 #include "odometry/features.h"
+#include "odometry/imu_gap_fill.h"
 #include "odometry/lidar_factors.h"
 #include "odometry/motion_prior.h"
 
@@ -42,6 +43,15 @@ struct LidarInertialOdometry::Frame {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+
+/// A dropout is filled with the mean rate of the second before it.
+constexpr std::int64_t kDropoutFillMeanSpanNs = 1'000'000'000;
+
+bool hasDropout(const ImuSignal& signal, double gap_threshold) {
+  return std::any_of(signal.knots.begin(), signal.knots.end(), [&](const ImuKnot& k) {
+    return k.dropout || k.sample_spacing > gap_threshold;
+  });
+}
 
 double msSince(Clock::time_point start) {
   return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
@@ -72,8 +82,36 @@ LidarInertialOdometry::~LidarInertialOdometry() = default;
 
 void LidarInertialOdometry::addImu(const ImuSample& sample) {
   if (!imu_.empty() && sample.stamp_ns <= imu_.back().stamp_ns) return;  // reader drops these
+  if (!imu_.empty() && isImuDropout(imu_.back(), sample, sensor_.imu)) {
+    const std::vector<ImuSample> fill =
+        fillImuGap(imu_.back().stamp_ns, sample.stamp_ns, continuedMotion(), sensor_.imu);
+    imu_.insert(imu_.end(), fill.begin(), fill.end());
+  }
   imu_.push_back(sample);
   tryProcess(false);
+}
+
+ImuGapMotion LidarInertialOdometry::continuedMotion() const {
+  // The gyro's mean rate over the last second; before the first scan (the
+  // initialisation's data) the mean force too, exact at rest.
+  const std::int64_t at_ns = imu_.back().stamp_ns;
+  const ImuMean mean = meanOfMeasured(imu_, at_ns, kDropoutFillMeanSpanNs);
+  ImuGapMotion motion;
+  motion.gyro = mean.gyro;
+  motion.accel = mean.accel;
+  if (window_.empty() || window_.back()->state_ns > at_ns) return motion;
+  // Else constant velocity from the newest state carried to the gap's start
+  // (the scans inside the gap wait for the IMU: the newest is before it).
+  const Frame& newest = *window_.back();
+  ImuState state = newest.state();
+  if (at_ns > newest.state_ns)
+    state = ImuPreintegration::fromSamples(imu_, newest.state_ns, at_ns, state.bias, sensor_.imu)
+                .predict(state);
+  motion.state_known = true;
+  motion.q_world_imu = state.T_world_imu.rotation();
+  motion.g_world = tiltedGravity(tilt_, sensor_.imu.gravity);
+  motion.bias = state.bias;
+  return motion;
 }
 
 void LidarInertialOdometry::addScan(Scan scan) {
@@ -476,7 +514,8 @@ void LidarInertialOdometry::emit(Frame& frame) {
   Eigen::Quaterniond q_lidar;
   const bool rotation_valid = lidarOnlyRotation(frame, q_lidar);
   if (rotation_valid && last_rotation_valid_ && frame.from_previous &&
-      frame.from_previous->signal().knots.size() >= 2) {
+      frame.from_previous->signal().knots.size() >= 2 &&
+      !hasDropout(frame.from_previous->signal(), imuGapThreshold(sensor_.imu))) {
     const ImuBias bias = frame.state().bias;
     const ImuSignal& signal = frame.from_previous->signal();
     time_offset_.add(last_lidar_rotation_.conjugate() * q_lidar,

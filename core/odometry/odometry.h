@@ -21,6 +21,7 @@
 #include "imu/imu_preintegration.h"
 #include "imu/imu_state.h"
 #include "imu/imu_state_blocks.h"
+#include "odometry/imu_gap_fill.h"
 #include "odometry/motion_init.h"
 #include "odometry/odometry_config.h"
 #include "odometry/scan_matcher.h"
@@ -110,6 +111,8 @@ class LidarInertialOdometry {
 
  private:
   struct Frame;
+  /// What a dropout after the newest sample is filled with (imu_gap_fill.h).
+  ImuGapMotion continuedMotion() const;
   void tryProcess(bool at_end);
   /// Still start when there is one, else (once the data cover the motion
   /// window) in motion; false while waiting for more data.
@@ -132,7 +135,7 @@ class LidarInertialOdometry {
   SensorConfig sensor_;
   std::deque<OdometryResult> results_;  ///< final results not taken yet
   std::int64_t time_offset_ns_ = 0;
-  std::vector<ImuSample> imu_;
+  std::vector<ImuSample> imu_;  ///< measured, and filled across dropouts
   std::deque<Scan> pending_;
   bool initialised_ = false;
   bool origin_set_ = false;

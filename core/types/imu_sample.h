@@ -14,6 +14,10 @@ struct ImuSample {
   /// Samples before this one were removed (a saturated run, io/imu_guard.h):
   /// the interval from the previous sample is a dropout whatever its length.
   bool after_removed = false;
+  /// Not measured: synthesised across a dropout (odometry/imu_gap_fill.h),
+  /// the motion continued at constant velocity and turn rate. The intervals
+  /// to and from it are dropouts whatever their length.
+  bool filled = false;
   double time() const { return nsToSeconds(stamp_ns); }  ///< [s]
   bool isFinite() const { return gyro.allFinite() && accel.allFinite(); }
 };

@@ -23,11 +23,12 @@ struct ImuNoise {
   double gyro_random_walk = 1.0e-5;     ///< gyro bias random walk [rad/s^2/sqrt(Hz)]
   double accel_random_walk = 1.0e-4;    ///< accel bias random walk [m/s^3/sqrt(Hz)]
   double gravity = 9.81;                ///< magnitude of gravity [m/s^2]
-  /// Across a dropout (samples further apart than imuGapThreshold()) the
-  /// rate and force are unknown: their mean over such an interval gets this
-  /// sigma on top of the white noise's (docs/method/imu.md, "Dropouts").
-  double dropout_gyro_sigma = 1.0;   ///< [rad/s]
-  double dropout_accel_sigma = 2.0;  ///< [m/s^2]
+  /// Across a dropout (samples further apart than imuGapThreshold(), or
+  /// filled in) the rate and force are unknown: a white noise of these
+  /// densities on top of the sensor's (docs/method/imu.md, "Dropouts"); over
+  /// 0.1 s, 1 rad/s and 2 m/s^2 (a walk's or a trot's spread).
+  double dropout_gyro_density = 0.3;   ///< [rad/s/sqrt(Hz)]
+  double dropout_accel_density = 0.6;  ///< [m/s^2/sqrt(Hz)]
 };
 
 /// IMU samples further apart than this are a dropout: 5 nominal periods, and

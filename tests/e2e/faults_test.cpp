@@ -80,7 +80,8 @@ TEST(Faults, SaturatedImuSamplesAreRepairedAndCounted) {
 }
 
 TEST(Faults, AnImuGapIsCountedAndTheLidarCarriesTheMotion) {
-  // Half a second without IMU while walking.
+  // Half a second without IMU while walking: measured 4.7 mm (22 mm before
+  // the gap was filled, odometry/imu_gap_fill.h).
   test::TempDir dir;
   const FaultRun run = runWithFaults(dir, "gap", "--fault imu_gap@12+0.5");
   const auto& gaps = run.report["faults"]["imu_gap"];
@@ -88,7 +89,22 @@ TEST(Faults, AnImuGapIsCountedAndTheLidarCarriesTheMotion) {
   EXPECT_NEAR(gaps["events"][0]["time_s"].get<double>(), 12.0, 0.01);
   EXPECT_NEAR(gaps["events"][0]["duration_s"].get<double>(), 0.5, 0.01);
   EXPECT_EQ(countOf(run.err, "IMU gap at"), 1u) << run.err;
-  EXPECT_LT(run.ate_se3, 0.03);
+  EXPECT_LT(run.ate_se3, 0.012);
+}
+
+TEST(Faults, ATwoSecondImuGapWhileWalkingCostsMillimetres) {
+  // Two seconds without IMU walking down the corridor, whose axis the LiDAR
+  // barely sees: the gap is filled with the motion continued at constant
+  // velocity (odometry/imu_gap_fill.h). Before: diverged (SE(3) ATE 57.9 m,
+  // the interpolated signal's acceleration integrated along the axis);
+  // measured 6-7 mm (clean 4.5 mm).
+  test::TempDir dir;
+  const FaultRun run = runWithFaults(dir, "gap2", "--fault imu_gap@12+2");
+  const auto& gaps = run.report["faults"]["imu_gap"];
+  ASSERT_EQ(gaps["count"], 1) << run.report["faults"].dump();
+  EXPECT_NEAR(gaps["events"][0]["duration_s"].get<double>(), 2.0, 0.01);
+  EXPECT_EQ(countOf(run.err, "IMU gap at"), 1u) << run.err;
+  EXPECT_LT(run.ate_se3, 0.015);
 }
 
 TEST(Faults, ALidarBlackoutIsCountedAndBridgedByTheImu) {
@@ -104,7 +120,8 @@ TEST(Faults, ALidarBlackoutIsCountedAndBridgedByTheImu) {
 
 TEST(Faults, SustainedImuSaturationIsRemovedAndBridgedAsADropout) {
   // 0.2 s with gyro x stuck at 2000 deg/s and accel z at 16 g (a knock):
-  // without the check the run diverged (SE(3) ATE 152 m); measured 10.4 mm.
+  // without the check the run diverged (SE(3) ATE 152 m); measured 3.8 mm (10.4 mm before the
+  // removed run was filled like a gap).
   test::TempDir dir;
   const FaultRun run = runWithFaults(dir, "saturation", "--fault imu_saturation@12+0.2");
   const auto& runs = run.report["faults"]["imu_saturation"];
@@ -114,7 +131,7 @@ TEST(Faults, SustainedImuSaturationIsRemovedAndBridgedAsADropout) {
   // Not reported again as spikes or as a gap.
   EXPECT_EQ(run.report["faults"].size(), 1u) << run.report["faults"].dump();
   EXPECT_EQ(countOf(run.err, "IMU saturation at"), 1u) << run.err;
-  EXPECT_LT(run.ate_se3, 0.02);
+  EXPECT_LT(run.ate_se3, 0.012);
 }
 
 TEST(Faults, AnOccludedLidarLosesTheBodyAndKeepsRegistering) {

@@ -165,10 +165,29 @@ TEST(ImuPreintegration, AnIntervalAfterRemovedSamplesIsADropout) {
                 .norm(),
             1e-15);
   // Over the 20 ms hole the rotation's variance grows by about
-  // dropout_gyro_sigma^2 dt^2 = (1 rad/s)^2 (0.02 s)^2 per axis.
+  // dropout_gyro_density^2 dt = (0.3 rad/s/sqrt(Hz))^2 (0.02 s) per axis.
   const double added = marked.covariance()(0, 0) - plain.covariance()(0, 0);
-  EXPECT_GT(added, 0.5 * 4e-4);
-  EXPECT_LT(added, 2.0 * 4e-4);
+  EXPECT_GT(added, 0.5 * 1.8e-3);
+  EXPECT_LT(added, 2.0 * 1.8e-3);
+}
+
+// Filled samples (ImuSample::filled, odometry/imu_gap_fill.h) make the
+// intervals to and from them dropouts: over 0.1 s of them the rotation's
+// variance grows by about dropout_gyro_density^2 * 0.1 s per axis.
+TEST(ImuPreintegration, IntervalsOfFilledSamplesAreDropouts) {
+  const SyntheticTrajectory tr = SyntheticTrajectory::trot();
+  auto samples = test::simulateImu(tr, test::ImuSimOptions());
+  const std::int64_t t_i = ns(0.30001), t_j = ns(0.50377);
+  const ImuPreintegration plain =
+      ImuPreintegration::fromSamples(samples, t_i, t_j, ImuBias(), ImuNoise());
+  for (ImuSample& s : samples)
+    if (s.stamp_ns > ns(0.35) && s.stamp_ns < ns(0.45)) s.filled = true;
+  const ImuPreintegration marked =
+      ImuPreintegration::fromSamples(samples, t_i, t_j, ImuBias(), ImuNoise());
+  EXPECT_LT((plain.deltas().dp - marked.deltas().dp).norm(), 1e-15);
+  const double added = marked.covariance()(0, 0) - plain.covariance()(0, 0);
+  EXPECT_GT(added, 0.8 * 0.09 * 0.1);
+  EXPECT_LT(added, 1.25 * 0.09 * 0.1);
 }
 
 // Analytic bias Jacobians against central differences of full re-integration.
