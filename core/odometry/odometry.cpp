@@ -68,6 +68,40 @@ Eigen::Vector3d marginalEigenvalues(const Eigen::Matrix<double, 6, 6>& H, int a)
   return Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(S).eigenvalues();
 }
 
+/// LiDAR-only normal equations of `matches` at T_world_imu in the world
+/// tangent [dp, dtheta]: H = sum w J^T J / sigma^2, b = sum w J^T e / sigma^2
+/// (e the residual [m]); a plane match's J is [n^T, (R y x n)^T], a line's
+/// [U, -U [R y]x] with U = -[u]x. w is the Huber weight of the whitened
+/// residual at huber_k as in the solve, 1 when huber_k <= 0.
+void lidarNormalEquations(const MatchResult& matches, const Pose& T_world_imu, double huber_k,
+                          Eigen::Matrix<double, 6, 6>& H, Eigen::Matrix<double, 6, 1>& b) {
+  H.setZero();
+  b.setZero();
+  const auto weight = [huber_k](double whitened_norm) {
+    return huber_k <= 0.0 || whitened_norm <= huber_k ? 1.0 : huber_k / whitened_norm;
+  };
+  const Eigen::Quaterniond q_world_imu = T_world_imu.rotation();
+  for (const PlaneMatch& m : matches.planes) {
+    const Eigen::Vector3d y_world = q_world_imu * m.y_imu;
+    const double e = m.n_world.dot(y_world + T_world_imu.translation()) - m.d_world;
+    Eigen::Matrix<double, 1, 6> J;
+    J << m.n_world.transpose(), y_world.cross(m.n_world).transpose();
+    const double w = weight(std::abs(e) / m.sigma) / (m.sigma * m.sigma);
+    H += w * J.transpose() * J;
+    b += w * J.transpose() * e;
+  }
+  for (const LineMatch& m : matches.lines) {
+    const Eigen::Vector3d y_world = q_world_imu * m.y_imu;
+    const Eigen::Vector3d e = (y_world + T_world_imu.translation() - m.a_world).cross(m.u_world);
+    const Eigen::Matrix3d U = -so3::skew(m.u_world);
+    Eigen::Matrix<double, 3, 6> J;
+    J << U, -U * so3::skew(y_world);
+    const double w = weight(e.norm() / m.sigma) / (m.sigma * m.sigma);
+    H += w * J.transpose() * J;
+    b += w * J.transpose() * e;
+  }
+}
+
 }  // namespace
 
 LidarInertialOdometry::LidarInertialOdometry(const OdometryConfig& config,
@@ -412,21 +446,11 @@ void LidarInertialOdometry::optimise(Frame& newest) {
   newest.stats.line_matches = static_cast<std::int64_t>(newest.matches.lines.size());
   newest.stats.match_rejects = newest.matches.rejected;
 
-  // Degeneracy: LiDAR-only information of the newest pose, in the world-frame
-  // tangent [dp, dtheta]: a plane match contributes w [n^T, (R y x n)^T].
-  Eigen::Matrix<double, 6, 6> H = Eigen::Matrix<double, 6, 6>::Zero();
-  const Pose T_world_imu = newest.blocks.toState(newest.state_ns).T_world_imu;
-  for (const PlaneMatch& m : newest.matches.planes) {
-    Eigen::Matrix<double, 1, 6> J;
-    J << m.n_world.transpose(), (T_world_imu.rotation() * m.y_imu).cross(m.n_world).transpose();
-    H += J.transpose() * J / (m.sigma * m.sigma);
-  }
-  for (const LineMatch& m : newest.matches.lines) {
-    Eigen::Matrix<double, 3, 6> J;
-    const Eigen::Matrix3d U = -so3::skew(m.u_world);
-    J << U, -U * so3::skew(T_world_imu.rotation() * m.y_imu);
-    H += J.transpose() * J / (m.sigma * m.sigma);
-  }
+  // Degeneracy: LiDAR-only information of the newest pose.
+  Eigen::Matrix<double, 6, 6> H;
+  Eigen::Matrix<double, 6, 1> b;
+  lidarNormalEquations(newest.matches, newest.blocks.toState(newest.state_ns).T_world_imu, 0.0, H,
+                       b);
   const Eigen::Vector3d translation_eigen = marginalEigenvalues(H, 0);
   const Eigen::Vector3d rotation_eigen = marginalEigenvalues(H, 3);
   const auto stdOf = [](double eigenvalue) { return 1.0 / std::sqrt(std::max(eigenvalue, 1e-12)); };
@@ -473,38 +497,12 @@ bool LidarInertialOdometry::lidarOnlyRotation(const Frame& frame, Eigen::Quatern
       frame.matches.planes.size() + frame.matches.lines.size() < 100)
     return false;
   const Pose T_world_imu = frame.state().T_world_imu;
-  const Eigen::Quaterniond q_world_imu = T_world_imu.rotation();
-  Eigen::Matrix<double, 6, 6> H = Eigen::Matrix<double, 6, 6>::Zero();
-  Eigen::Matrix<double, 6, 1> g = Eigen::Matrix<double, 6, 1>::Zero();
-  const double k = config_.huber_threshold;
-  const auto robust = [k](double whitened_norm) {
-    return whitened_norm <= k ? 1.0 : k / whitened_norm;
-  };
-  for (const PlaneMatch& m : frame.matches.planes) {
-    const Eigen::Vector3d y_world = q_world_imu * m.y_imu;
-    const double e = (m.n_world.dot(y_world + T_world_imu.translation()) - m.d_world) / m.sigma;
-    Eigen::Matrix<double, 1, 6> J;
-    J << m.n_world.transpose(), y_world.cross(m.n_world).transpose();
-    J /= m.sigma;
-    const double w = robust(std::abs(e));
-    H += w * J.transpose() * J;
-    g += w * J.transpose() * e;
-  }
-  for (const LineMatch& m : frame.matches.lines) {
-    const Eigen::Vector3d y_world = q_world_imu * m.y_imu;
-    const Eigen::Vector3d x_world = y_world + T_world_imu.translation();
-    const Eigen::Vector3d e = (x_world - m.a_world).cross(m.u_world) / m.sigma;
-    const Eigen::Matrix3d U = -so3::skew(m.u_world);
-    Eigen::Matrix<double, 3, 6> J;
-    J << U, -U * so3::skew(y_world);
-    J /= m.sigma;
-    const double w = robust(e.norm());
-    H += w * J.transpose() * J;
-    g += w * J.transpose() * e;
-  }
+  Eigen::Matrix<double, 6, 6> H;
+  Eigen::Matrix<double, 6, 1> g;
+  lidarNormalEquations(frame.matches, T_world_imu, config_.huber_threshold, H, g);
   const Eigen::Matrix<double, 6, 1> step = -H.ldlt().solve(g);
   if (!step.allFinite()) return false;
-  q = so3::expQuaternion(step.tail<3>()) * q_world_imu;
+  q = so3::expQuaternion(step.tail<3>()) * T_world_imu.rotation();
   return true;
 }
 
