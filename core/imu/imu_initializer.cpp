@@ -2,22 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <iomanip>
-#include <sstream>
 
 #include "common/error.h"
+#include "common/format.h"
 
 namespace storey {
-namespace {
-
-std::string fmt(double x, int precision = 3) {
-  std::ostringstream os;
-  os << std::setprecision(precision) << x;
-  return os.str();
-}
-
-}  // namespace
-
 Eigen::Quaterniond gravityAlignedRotation(const Eigen::Vector3d& up_imu) {
   const Eigen::Vector3d u = up_imu.normalized();
   const double pitch = std::atan2(-u.x(), std::hypot(u.y(), u.z()));
@@ -29,7 +18,7 @@ Eigen::Quaterniond gravityAlignedRotation(const Eigen::Vector3d& up_imu) {
 ImuInitResult initializeImuFromStill(const std::vector<ImuSample>& samples, const ImuNoise& noise,
                                      const ImuInitConfig& config) {
   config.validate();
-  const std::string window_text = fmt(config.still_window) + " s";
+  const std::string window_text = significantText(config.still_window) + " s";
   if (samples.size() < 2) {
     throw Error("IMU initialisation needs the first " + window_text +
                 " of IMU data at rest, but the log has " + std::to_string(samples.size()) +
@@ -40,7 +29,7 @@ ImuInitResult initializeImuFromStill(const std::vector<ImuSample>& samples, cons
   if (samples.back().stamp_ns < t_end) {
     throw Error("IMU initialisation needs the first " + window_text +
                 " of IMU data at rest, but the IMU data last only " +
-                fmt(nsToSeconds(samples.back().stamp_ns - t0)) + " s");
+                significantText(nsToSeconds(samples.back().stamp_ns - t0)) + " s");
   }
   const auto end =
       std::upper_bound(samples.begin(), samples.end(), t_end,
@@ -54,7 +43,8 @@ ImuInitResult initializeImuFromStill(const std::vector<ImuSample>& samples, cons
   Eigen::Vector3d mean_accel = Eigen::Vector3d::Zero();
   for (auto it = samples.begin(); it != end; ++it) {
     if (!it->isFinite()) {
-      throw Error("IMU initialisation: sample at " + fmt(it->time(), 12) + " s is not finite");
+      throw Error("IMU initialisation: sample at " + significantText(it->time(), 12) +
+                  " s is not finite");
     }
     mean_gyro += it->gyro;
     mean_accel += it->accel;
@@ -85,24 +75,25 @@ ImuInitResult initializeImuFromStill(const std::vector<ImuSample>& samples, cons
       "; Storey initialises gravity and the gyro bias from a still start: record the first " +
       window_text + " with the sensor at rest (limits: odometry.imu_init in the config)";
   if (stats.gyro_std > stats.gyro_std_limit) {
-    throw Error(head + "gyro std " + fmt(stats.gyro_std) + " rad/s > " + fmt(stats.gyro_std_limit) +
-                " rad/s" + fix);
+    throw Error(head + "gyro std " + significantText(stats.gyro_std) + " rad/s > " +
+                significantText(stats.gyro_std_limit) + " rad/s" + fix);
   }
   if (stats.accel_std > stats.accel_std_limit) {
-    throw Error(head + "accel std " + fmt(stats.accel_std) + " m/s^2 > " +
-                fmt(stats.accel_std_limit) + " m/s^2" + fix);
+    throw Error(head + "accel std " + significantText(stats.accel_std) + " m/s^2 > " +
+                significantText(stats.accel_std_limit) + " m/s^2" + fix);
   }
   if (mean_gyro.norm() > config.max_gyro_bias) {
-    throw Error(head + "mean gyro " + fmt(mean_gyro.norm()) + " rad/s > " +
-                fmt(config.max_gyro_bias) +
+    throw Error(head + "mean gyro " + significantText(mean_gyro.norm()) + " rad/s > " +
+                significantText(config.max_gyro_bias) +
                 " rad/s (a steady rotation, or a gyro bias above "
                 "max_gyro_bias)" +
                 fix);
   }
   if (std::abs(stats.mean_accel_norm - noise.gravity) > config.max_gravity_error) {
     throw Error("IMU initialisation: the mean specific force in the first " + window_text + " is " +
-                fmt(stats.mean_accel_norm) + " m/s^2, not gravity (" + fmt(noise.gravity) + " +- " +
-                fmt(config.max_gravity_error) +
+                significantText(stats.mean_accel_norm) + " m/s^2, not gravity (" +
+                significantText(noise.gravity) + " +- " +
+                significantText(config.max_gravity_error) +
                 " m/s^2): the sensor is accelerating, or its accelerations are not in m/s^2 "
                 "(in g?)" +
                 fix);

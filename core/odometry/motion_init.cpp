@@ -8,12 +8,11 @@
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
-#include <iomanip>
 #include <limits>
 #include <memory>
-#include <sstream>
 
 #include "common/error.h"
+#include "common/format.h"
 #include "imu/imu_initializer.h"
 #include "imu/imu_pose_table.h"
 #include "imu/imu_preintegration.h"
@@ -37,12 +36,6 @@ constexpr double kGuessSigmaRotation = 0.02;        // [rad]
 constexpr double kRegisteredSigmaPosition = 0.01;   // [m]
 constexpr double kRegisteredSigmaRotation = 0.002;  // [rad]
 constexpr int kMinMatches = 30;                     // plane + line matches for a registered scan
-
-std::string fmt(double x, int precision = 3) {
-  std::ostringstream os;
-  os << std::setprecision(precision) << x;
-  return os.str();
-}
 
 /// r = [(p - p0) / sigma_p, 2 vec(q q0^-1) / sigma_r] on the 7-parameter IMU pose block.
 struct PosePrior {
@@ -138,7 +131,7 @@ Pose registerScan(const MotionInitScan& scan, const LocalMaps& maps, const Odome
   }
   if (matches < kMinMatches) {
     throw Error("too few LiDAR matches (" + std::to_string(matches) + ") to register the scan at " +
-                fmt(nsToSeconds(scan.state_ns), 12) + " s (IMU clock)");
+                significantText(nsToSeconds(scan.state_ns), 12) + " s (IMU clock)");
   }
   return blocks.toState(0).T_world_imu;
 }
@@ -243,9 +236,10 @@ Alignment align(const std::vector<Pose>& T_world_imu, const std::vector<std::int
   const Eigen::Vector3d g_free = x.segment<3>(3);
   out.gravity_norm = g_free.norm();
   if (!(std::abs(out.gravity_norm - noise.gravity) <= config.imu_init.max_gravity_error)) {
-    throw Error("the LiDAR motion and the IMU agree on a gravity of " + fmt(out.gravity_norm) +
-                " m/s^2, not " + fmt(noise.gravity) + " +- " +
-                fmt(config.imu_init.max_gravity_error) +
+    throw Error("the LiDAR motion and the IMU agree on a gravity of " +
+                significantText(out.gravity_norm) + " m/s^2, not " +
+                significantText(noise.gravity) + " +- " +
+                significantText(config.imu_init.max_gravity_error) +
                 " m/s^2 (wrong extrinsic or time offset, accelerations not in m/s^2, or the "
                 "registration failed)");
   }
@@ -278,7 +272,7 @@ MotionInitResult initializeInMotion(const std::vector<ImuSample>& imu,
   const int n = static_cast<int>(scans.size());
   if (n < std::max(3, config.imu_init.motion_min_scans)) {
     throw Error("only " + std::to_string(n) + " scans in the first " +
-                fmt(config.imu_init.motion_window) + " s (needs " +
+                significantText(config.imu_init.motion_window) + " s (needs " +
                 std::to_string(std::max(3, config.imu_init.motion_min_scans)) + ")");
   }
   const std::int64_t offset_ns = secondsToNs(sensor.time_offset_lidar_to_imu);
