@@ -6,6 +6,7 @@
 #include <sensor_msgs/PointField.h>
 
 #include <cstring>
+#include <vector>
 
 #include "common/error.h"
 #include "io/ros_message_codec.h"
@@ -91,11 +92,20 @@ void writeMessage(rosbag::Bag& bag, const std::string& path, const std::string& 
   try {
     bag.write(topic, rosTime(record_ns), msg);
   } catch (const std::exception& e) {
-    throw Error(path + ": cannot write " + what + ": " + e.what());
+    throw Error(path + ": cannot write " + what + ": " + e.what() + " (disk full?)");
   }
 }
 
 }  // namespace
+
+void BagWriter::abandon(std::unique_ptr<Impl> impl) {
+  // rosbag::Bag closes again in its own destructor and throws out of it when
+  // that fails too (std::terminate): a bag that could not be written (a full
+  // disk) is never destroyed, only kept reachable until the process ends,
+  // which releases its file.
+  static auto* const unfinished = new std::vector<Impl*>();
+  unfinished->push_back(impl.release());
+}
 
 BagWriter::BagWriter(const std::string& path, BagCompression compression)
     : impl_(std::make_unique<Impl>()), path_(path) {
@@ -105,7 +115,8 @@ BagWriter::BagWriter(const std::string& path, BagCompression compression)
                                   ? rosbag::compression::LZ4
                                   : rosbag::compression::Uncompressed);
   } catch (const std::exception& e) {
-    throw Error(path + ": cannot open the bag for writing: " + e.what());
+    abandon(std::move(impl_));
+    throw Error(path + ": cannot open the bag for writing: " + e.what() + " (disk full?)");
   }
 }
 
@@ -113,6 +124,7 @@ BagWriter::~BagWriter() {
   try {
     close();
   } catch (...) {
+    abandon(std::move(impl_));
   }
 }
 
@@ -184,7 +196,7 @@ void BagWriter::close() {
   try {
     impl_->bag.close();
   } catch (const std::exception& e) {
-    throw Error(path_ + ": cannot finish the bag: " + e.what());
+    throw Error(path_ + ": cannot finish the bag: " + e.what() + " (disk full?)");
   }
 }
 

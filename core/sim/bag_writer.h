@@ -38,6 +38,8 @@ class BagWriter final : public SimLogWriter {
                   std::int64_t receipt_ns);
 
   struct Impl;
+  /// Keeps a bag whose writing failed from ever being destroyed (see the .cpp).
+  static void abandon(std::unique_ptr<Impl> impl);
   std::unique_ptr<Impl> impl_;
   std::string path_;
 };
