@@ -12,7 +12,7 @@ namespace storey {
 namespace {
 
 constexpr std::size_t kScanIntervalsForPeriod = 20;
-constexpr double kScanGapPeriods = 2.5;
+constexpr double kScanGapPeriods = 1.5;        // one scan missing is a gap of two periods
 constexpr std::size_t kSaturatedRun = 3;       // samples stuck at one value
 constexpr float kOcclusionNear = 0.5f;         // points nearer do not count [m]
 constexpr std::size_t kOcclusionHistory = 50;  // scans in the usual count's median

@@ -9,7 +9,7 @@
 ///   neighbours' linear interpolation at its stamp.
 /// - an IMU gap: consecutive samples further apart than imuGapThreshold()
 ///   (the odometry then lets the LiDAR carry the motion across it).
-/// - a LiDAR gap: consecutive scans further apart than 2.5 scan periods
+/// - a LiDAR gap: consecutive scans further apart than 1.5 scan periods
 ///   (the median of the first 20 intervals).
 /// - IMU saturation: three or more consecutive samples holding the same value
 ///   on one axis, at least input.imu_saturation_gyro (imu_saturation_accel)

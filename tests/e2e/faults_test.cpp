@@ -118,6 +118,19 @@ TEST(Faults, ALidarBlackoutIsCountedAndBridgedByTheImu) {
   EXPECT_LT(run.ate_se3, 0.012);
 }
 
+TEST(Faults, SingleDroppedScansAreCounted) {
+  // Every 10th scan from 5 s to 14 s dropped (the scans at 5.1, 6.1, ... s).
+  test::TempDir dir;
+  std::string faults;
+  for (int k = 5; k <= 14; ++k) faults += " --fault lidar_gap@" + std::to_string(k) + ".05+0.1";
+  const FaultRun run = runWithFaults(dir, "dropped", faults);
+  const auto& gaps = run.report["faults"]["lidar_gap"];
+  ASSERT_EQ(gaps["count"], 10) << run.report["faults"].dump();
+  EXPECT_NEAR(gaps["events"][0]["duration_s"].get<double>(), 0.1, 0.01);
+  EXPECT_EQ(countOf(run.err, "LiDAR gap at"), 1u) << run.err;
+  EXPECT_LT(run.ate_se3, 0.012);
+}
+
 TEST(Faults, SustainedImuSaturationIsRemovedAndBridgedAsADropout) {
   // 0.2 s with gyro x stuck at 2000 deg/s and accel z at 16 g (a knock):
   // without the check the run diverged (SE(3) ATE 152 m); measured 3.8 mm (10.4 mm before the

@@ -179,6 +179,25 @@ TEST(ImuGuard, LidarGapsAreCountedOnceTheScanPeriodIsKnown) {
   EXPECT_NE(e.detail.find("10 scans missing"), std::string::npos) << e.detail;
 }
 
+TEST(ImuGuard, OneDroppedScanIsALidarGap) {
+  std::vector<LogMessage> in = log(8.0);
+  // Every 10th scan from 3 s on dropped (3.05, 4.05, ...: 5 of them).
+  in.erase(std::remove_if(in.begin(), in.end(),
+                          [](const LogMessage& m) {
+                            if (!std::holds_alternative<Scan>(m)) return false;
+                            const double t = nsToSeconds(std::get<Scan>(m).stamp_ns - kStart);
+                            const double frac = t - std::floor(t);
+                            return t > 3.0 && frac > 0.04 && frac < 0.06;
+                          }),
+           in.end());
+  Guarded g(in);
+  ASSERT_EQ(g.faults.count(kFaultLidarGap), 5);
+  const FaultEvent& e = g.faults.kinds().at(kFaultLidarGap).first[0];
+  EXPECT_NEAR(e.time, 2.95, 1e-9);
+  EXPECT_NEAR(e.duration, 0.1, 1e-9);
+  EXPECT_NE(e.detail.find("1 scans missing"), std::string::npos) << e.detail;
+}
+
 TEST(ImuGuard, ASaturatedRunIsRemovedAndTheSampleAfterItMarked) {
   // 0.2 s from 2.0 s with gyro x stuck at 34.9 rad/s (2000 deg/s) while the
   // other axes go on; one sample at the range alone is a spike, not a run;
