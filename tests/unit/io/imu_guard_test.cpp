@@ -67,6 +67,16 @@ std::vector<LogMessage> log(double end, const std::function<bool(ImuSample&)>& e
   return out;
 }
 
+/// Removes the scans of `in` whose time since the start [s] `drop` picks.
+void dropScans(std::vector<LogMessage>& in, const std::function<bool(double)>& drop) {
+  in.erase(std::remove_if(in.begin(), in.end(),
+                          [&](const LogMessage& m) {
+                            return std::holds_alternative<Scan>(m) &&
+                                   drop(nsToSeconds(std::get<Scan>(m).stamp_ns - kStart));
+                          }),
+           in.end());
+}
+
 struct Guarded {
   FaultLog faults;
   std::vector<LogMessage> out;
@@ -164,13 +174,7 @@ TEST(ImuGuard, ImuGapsAreCountedWithTheirTimeAndLength) {
 TEST(ImuGuard, LidarGapsAreCountedOnceTheScanPeriodIsKnown) {
   std::vector<LogMessage> in = log(8.0);
   // Drop the scans stamped 5.05 to 5.95 s: 10 missing at 10 Hz, 4.95 to 6.05 s without.
-  in.erase(std::remove_if(in.begin(), in.end(),
-                          [](const LogMessage& m) {
-                            if (!std::holds_alternative<Scan>(m)) return false;
-                            const double t = nsToSeconds(std::get<Scan>(m).stamp_ns - kStart);
-                            return t > 5.01 && t < 5.99;
-                          }),
-           in.end());
+  dropScans(in, [](double t) { return t > 5.01 && t < 5.99; });
   Guarded g(in);
   ASSERT_EQ(g.faults.count(kFaultLidarGap), 1);
   const FaultEvent& e = g.faults.kinds().at(kFaultLidarGap).first[0];
@@ -182,14 +186,10 @@ TEST(ImuGuard, LidarGapsAreCountedOnceTheScanPeriodIsKnown) {
 TEST(ImuGuard, OneDroppedScanIsALidarGap) {
   std::vector<LogMessage> in = log(8.0);
   // Every 10th scan from 3 s on dropped (3.05, 4.05, ...: 5 of them).
-  in.erase(std::remove_if(in.begin(), in.end(),
-                          [](const LogMessage& m) {
-                            if (!std::holds_alternative<Scan>(m)) return false;
-                            const double t = nsToSeconds(std::get<Scan>(m).stamp_ns - kStart);
-                            const double frac = t - std::floor(t);
-                            return t > 3.0 && frac > 0.04 && frac < 0.06;
-                          }),
-           in.end());
+  dropScans(in, [](double t) {
+    const double frac = t - std::floor(t);
+    return t > 3.0 && frac > 0.04 && frac < 0.06;
+  });
   Guarded g(in);
   ASSERT_EQ(g.faults.count(kFaultLidarGap), 5);
   const FaultEvent& e = g.faults.kinds().at(kFaultLidarGap).first[0];
