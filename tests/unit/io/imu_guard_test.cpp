@@ -171,16 +171,23 @@ TEST(ImuGuard, ImuGapsAreCountedWithTheirTimeAndLength) {
   EXPECT_EQ(g.faults.count(kFaultImuSpike), 0);  // no spike across a gap
 }
 
+/// The guard counts `count` LiDAR gaps in `in`, the first at `time` [s] for
+/// `duration` [s] with `detail` in its text.
+void expectLidarGaps(const std::vector<LogMessage>& in, std::int64_t count, double time,
+                     double duration, const std::string& detail) {
+  Guarded g(in);
+  ASSERT_EQ(g.faults.count(kFaultLidarGap), count);
+  const FaultEvent& e = g.faults.kinds().at(kFaultLidarGap).first[0];
+  EXPECT_NEAR(e.time, time, 1e-9);
+  EXPECT_NEAR(e.duration, duration, 1e-9);
+  EXPECT_NE(e.detail.find(detail), std::string::npos) << e.detail;
+}
+
 TEST(ImuGuard, LidarGapsAreCountedOnceTheScanPeriodIsKnown) {
   std::vector<LogMessage> in = log(8.0);
   // Drop the scans stamped 5.05 to 5.95 s: 10 missing at 10 Hz, 4.95 to 6.05 s without.
   dropScans(in, [](double t) { return t > 5.01 && t < 5.99; });
-  Guarded g(in);
-  ASSERT_EQ(g.faults.count(kFaultLidarGap), 1);
-  const FaultEvent& e = g.faults.kinds().at(kFaultLidarGap).first[0];
-  EXPECT_NEAR(e.time, 4.95, 1e-9);
-  EXPECT_NEAR(e.duration, 1.0, 1e-9);
-  EXPECT_NE(e.detail.find("10 scans missing"), std::string::npos) << e.detail;
+  expectLidarGaps(in, 1, 4.95, 1.0, "10 scans missing");
 }
 
 TEST(ImuGuard, OneDroppedScanIsALidarGap) {
@@ -190,12 +197,7 @@ TEST(ImuGuard, OneDroppedScanIsALidarGap) {
     const double frac = t - std::floor(t);
     return t > 3.0 && frac > 0.04 && frac < 0.06;
   });
-  Guarded g(in);
-  ASSERT_EQ(g.faults.count(kFaultLidarGap), 5);
-  const FaultEvent& e = g.faults.kinds().at(kFaultLidarGap).first[0];
-  EXPECT_NEAR(e.time, 2.95, 1e-9);
-  EXPECT_NEAR(e.duration, 0.1, 1e-9);
-  EXPECT_NE(e.detail.find("1 scans missing"), std::string::npos) << e.detail;
+  expectLidarGaps(in, 5, 2.95, 0.1, "1 scans missing");
 }
 
 TEST(ImuGuard, ASaturatedRunIsRemovedAndTheSampleAfterItMarked) {
