@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <future>
 #include <limits>
+#include <map>
 #include <memory>
 #include <optional>
 #include <ostream>
@@ -21,6 +22,7 @@
 #include "common/log.h"
 #include "io/calibration_file.h"
 #include "io/velodyne/frame_assembler.h"
+#include "io/velodyne/velodyne_scan_decoder.h"
 #include "sim/bag_writer.h"
 #include "sim/imu_csv_writer.h"
 #include "sim/imu_simulator.h"
@@ -28,6 +30,7 @@
 #include "sim/ros2_bag_writer.h"
 #include "sim/velodyne_packet_builder.h"
 #include "sim/velodyne_pcap_writer.h"
+#include "sim/velodyne_scan_stream.h"
 #include "sim/world.h"
 
 namespace storey::sim {
@@ -287,18 +290,22 @@ SimulationResult simulate(const BuildingSpec& spec, const SimulationOptions& opt
         formats.ros2 == Ros2Format::kDb3 ? Ros2Storage::kSqlite3 : Ros2Storage::kMcap, mcap));
   }
   const bool bag = !logs.empty();
-  // Packets for the bags: VelodyneScan messages of one revolution's packets
-  // each, stamped (and recorded) at their last packet, as the ROS drivers do.
-  std::unique_ptr<VelodynePacketBuilder> packets;
-  VelodyneScanMessage packet_message;
-  std::size_t packets_per_message = 0;
-  if (formats.packets) {
-    packets = std::make_unique<VelodynePacketBuilder>(start_ns, sensors.lidar.rotation_rate,
-                                                      *velodyneModel(sensors.lidar.model),
-                                                      kPacketsTopic, cut_azimuth);
-    packets_per_message =
-        static_cast<std::size_t>(std::ceil(packets->packetRate() / sensors.lidar.rotation_rate));
-    packet_message.frame_id = sensors.lidar_frame_id;
+  const bool organised = lidar.beams().layout == CloudLayout::kOuster;
+  // A Velodyne LiDAR in a bag: its packets in VelodyneScan messages, written
+  // as they are (formats.packets) or as the point clouds the driver decodes
+  // from them (velodyne_scan_stream.h), so the two bags carry the same points.
+  std::unique_ptr<VelodyneScanStream> velodyne_stream;
+  std::unique_ptr<VelodyneScanDecoder> velodyne_driver;
+  if (bag && !organised) {
+    velodyne_stream = std::make_unique<VelodyneScanStream>(
+        start_ns, sensors.lidar.rotation_rate, *velodyneModel(sensors.lidar.model),
+        sensors.lidar_frame_id, kPacketsTopic, cut_azimuth);
+    if (!formats.packets) {
+      VelodyneScanOptions driver;
+      driver.model = *velodyneModel(sensors.lidar.model);
+      driver.cut_angle_deg = kScanStartAzimuthDeg;
+      velodyne_driver = std::make_unique<VelodyneScanDecoder>("simulator: Velodyne driver", driver);
+    }
   }
   std::unique_ptr<VelodynePcapWriter> pcap;
   if (options.formats.pcap) {
@@ -347,26 +354,69 @@ SimulationResult simulate(const BuildingSpec& spec, const SimulationOptions& opt
       }
     }
   };
-  auto writePacketMessage = [&]() {
-    if (packet_message.packets.empty()) return;
-    packet_message.stamp_ns = packet_message.packets.back().stamp_ns;
-    writeImuUntil(packet_message.stamp_ns - start_ns);
-    for (auto& log : logs) {
-      log->writeVelodyneScan(kPacketsTopic, packet_message, packet_message.stamp_ns);
-    }
-    packet_message.packets.clear();
-  };
-  auto addPacket = [&](const BuiltPacket& built) {
-    VelodynePacketMessage packet;
-    packet.stamp_ns = built.complete_ns;
-    packet.data = built.payload;
-    packet_message.packets.push_back(packet);
-    if (packet_message.packets.size() >= packets_per_message) writePacketMessage();
-  };
-
   std::ostringstream lidar_truth;
   lidar_truth
       << "# timestamp x y z qx qy qz qw (LiDAR frame in the world frame, at each scan's stamp)\n";
+  // One point cloud into the bags, with the LiDAR faults of its time
+  // (`organised`: the Ouster layout's scan, else the Velodyne layout's).
+  auto writeCloud = [&](Scan& scan, std::int64_t record_ns, const OrganisedScan* organised_scan) {
+    writeTumLine(
+        lidar_truth, scan.stamp_ns,
+        trajectory.frame((scan.stamp_ns - start_ns) * 1e-9, sensors.T_body_lidar).T_world_frame);
+    ++result.scans;
+    result.points += static_cast<std::int64_t>(scan.points.size());
+    const double scan_time = (scan.stamp_ns - start_ns) * 1e-9;
+    if (lidar_gaps && inLidarGap(options.faults, scan_time)) return;
+    if (occlusions && inOcclusion(options.faults, scan_time)) {
+      // A body in front of the sensor: the rays of the forward sector end on it.
+      for (ScanPoint& point : scan.points) {
+        const float range = point.p.norm();
+        if (range > 0.0f && std::abs(std::atan2(point.p.y(), point.p.x())) <= kOcclusionHalfSector)
+          point.p *= kOcclusionRange / range;
+      }
+    }
+    if (lidar_jumps) scan.stamp_ns += lidarClockShiftNs(options.faults, scan_time);
+    if (nan_points && inFault(options.faults, SimFaultKind::kNan, scan_time)) {
+      for (std::size_t p = 0; p < scan.points.size(); p += 20)
+        scan.points[p].p.setConstant(std::numeric_limits<float>::quiet_NaN());
+    }
+    const int copies =
+        duplicates && inFault(options.faults, SimFaultKind::kDuplicate, scan_time) ? 2 : 1;
+    for (auto& log : logs) {
+      for (int copy = 0; copy < copies; ++copy) {
+        if (organised_scan != nullptr) {
+          log->writeOrganisedScan(sensors.points_topic, scan.frame_id, *organised_scan,
+                                  scan.stamp_ns, record_ns);
+        } else {
+          log->writeScan(sensors.points_topic, scan, record_ns);
+        }
+      }
+    }
+  };
+  // The Velodyne messages completed so far: written as packets, or decoded
+  // into the driver's clouds, each recorded with the message that completes it.
+  std::vector<VelodyneScanMessage> velodyne_messages;
+  std::vector<Scan> driver_clouds;
+  std::map<std::string, std::int64_t> driver_dropped;
+  std::int64_t last_message_ns = 0;
+  auto writeVelodyneMessages = [&]() {
+    for (const VelodyneScanMessage& message : velodyne_messages) {
+      writeImuUntil(message.stamp_ns - start_ns);
+      last_message_ns = message.stamp_ns;
+      if (!velodyne_driver) {
+        for (auto& log : logs) log->writeVelodyneScan(kPacketsTopic, message, message.stamp_ns);
+        continue;
+      }
+      driver_clouds.clear();
+      velodyne_driver->add(message, driver_clouds, driver_dropped);
+      for (Scan& cloud : driver_clouds) {
+        cloud.frame_id = sensors.lidar_frame_id;
+        writeCloud(cloud, message.stamp_ns, nullptr);
+      }
+    }
+    velodyne_messages.clear();
+  };
+
   const int threads =
       options.threads > 0 ? options.threads : tbb::this_task_arena::max_concurrency();
   tbb::task_arena arena(threads);
@@ -377,9 +427,8 @@ SimulationResult simulate(const BuildingSpec& spec, const SimulationOptions& opt
     std::vector<std::vector<VelodyneFiring>> firings;  ///< per scan, for the pcap
     std::vector<OrganisedScan> organised;              ///< per scan, Ouster layout
   };
-  const bool want_firings = pcap != nullptr || packets != nullptr;
-  const bool organised = lidar.beams().layout == CloudLayout::kOuster;
-  const bool want_organised = organised && bag && !packets;
+  const bool want_firings = pcap != nullptr || velodyne_stream != nullptr;
+  const bool want_organised = organised && bag;
   auto castChunk = [&](int first) {
     Chunk out;
     const auto size = static_cast<std::size_t>(std::max(0, std::min(chunk, scan_count - first)));
@@ -407,55 +456,38 @@ SimulationResult simulate(const BuildingSpec& spec, const SimulationOptions& opt
       const std::int64_t receipt_ns = lidar.scanEndNs(n);
       writeImuUntil(receipt_ns);
       if (scan.stamp_ns < cut_ns) continue;  // before the cut (--start-at)
-      writeTumLine(lidar_truth, start_ns + scan.stamp_ns,
-                   trajectory.frame(scan.stamp_ns * 1e-9, sensors.T_body_lidar).T_world_frame);
-      ++result.scans;
-      result.points += static_cast<std::int64_t>(scan.points.size());
       scan.stamp_ns += start_ns;
-      const double scan_time = (scan.stamp_ns - start_ns) * 1e-9;
-      const bool blackout = lidar_gaps && inLidarGap(options.faults, scan_time);
-      if (occlusions && inOcclusion(options.faults, scan_time)) {
-        // A body in front of the sensor: the rays of the forward sector end on it.
-        for (ScanPoint& point : scan.points) {
-          const float range = point.p.norm();
-          if (range > 0.0f &&
-              std::abs(std::atan2(point.p.y(), point.p.x())) <= kOcclusionHalfSector)
-            point.p *= kOcclusionRange / range;
-        }
-      }
-      if (lidar_jumps) scan.stamp_ns += lidarClockShiftNs(options.faults, scan_time);
-      if (nan_points && inFault(options.faults, SimFaultKind::kNan, scan_time)) {
-        for (std::size_t p = 0; p < scan.points.size(); p += 20)
-          scan.points[p].p.setConstant(std::numeric_limits<float>::quiet_NaN());
-      }
-      const int copies =
-          duplicates && inFault(options.faults, SimFaultKind::kDuplicate, scan_time) ? 2 : 1;
-      for (auto& log : logs) {
-        if (packets || blackout) break;
-        for (int copy = 0; copy < copies; ++copy) {
-          if (organised) {
-            log->writeOrganisedScan(sensors.points_topic, scan.frame_id, cast.organised[i],
-                                    scan.stamp_ns, start_ns + receipt_ns);
-          } else {
-            log->writeScan(sensors.points_topic, scan, start_ns + receipt_ns);
-          }
-        }
+      if (organised && bag) {
+        writeCloud(scan, start_ns + receipt_ns, &cast.organised[i]);
+      } else if (!velodyne_driver) {  // packets or a capture: the truth at the scans' stamps
+        writeTumLine(lidar_truth, scan.stamp_ns,
+                     trajectory.frame((scan.stamp_ns - start_ns) * 1e-9, sensors.T_body_lidar)
+                         .T_world_frame);
+        ++result.scans;
+        result.points += static_cast<std::int64_t>(scan.points.size());
       }
       if (pcap) {
         for (const VelodyneFiring& firing : cast.firings[i]) pcap->add(firing);
       }
-      if (packets) {
-        BuiltPacket built;
-        for (const VelodyneFiring& firing : cast.firings[i]) {
-          if (packets->add(firing, built)) addPacket(built);
-        }
+      if (velodyne_stream) {
+        for (const VelodyneFiring& firing : cast.firings[i])
+          velodyne_stream->add(firing, velodyne_messages);
+        writeVelodyneMessages();
       }
     }
   }
-  if (packets) {
-    BuiltPacket built;
-    if (packets->finish(built)) addPacket(built);
-    writePacketMessage();
+  if (velodyne_stream) {
+    velodyne_stream->finish(velodyne_messages);
+    writeVelodyneMessages();
+    if (velodyne_driver) {
+      driver_clouds.clear();
+      velodyne_driver->flush(driver_clouds);
+      // The last frame, recorded with the last message (its packet completed by no-returns).
+      for (Scan& cloud : driver_clouds) {
+        cloud.frame_id = sensors.lidar_frame_id;
+        writeCloud(cloud, last_message_ns, nullptr);
+      }
+    }
   }
   writeImuUntil(INT64_MAX / 2);
   if (held_imu)
@@ -466,9 +498,9 @@ SimulationResult simulate(const BuildingSpec& spec, const SimulationOptions& opt
     pcap->close();
     result.pcap_packets = pcap->packets();
   }
-  if (pcap || packets) {
+  if (pcap || formats.packets) {
     const std::vector<std::int64_t>& frame_starts =
-        pcap ? pcap->frameStarts() : packets->frameStarts();
+        pcap ? pcap->frameStarts() : velodyne_stream->frameStarts();
     // The packets' frames (cut at the calibration's angle) start at a block
     // boundary, within one firing sequence of a scan's stamp (a VLP-16 block
     // holds two; the block azimuth is rounded to 0.01 deg): their own ground

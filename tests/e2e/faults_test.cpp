@@ -2,7 +2,9 @@
 // docs/faults.md): each run completes (exit 0), the fault is counted in
 // report.json with its time and warned about once, and the trajectory stays
 // within a stated bound of the truth (SE(3)-aligned ATE, RMSE). The clean
-// run's ATE is about 5 mm.
+// run's ATE is 8.4 mm (4.5 mm before the simulator's Velodyne clouds became
+// the driver's decode of its packets, sim/velodyne_scan_stream.h: tiny's
+// graph of 9 keyframes moves by millimetres with its input's rounding).
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -56,6 +58,7 @@ FaultRun runWithFaults(const test::TempDir& dir, const std::string& name,
   if (!eval.is_discarded() && eval.contains("ate"))
     for (const auto& a : eval["ate"])
       if (a["alignment"] == "se3") run.ate_se3 = a["translation_m"]["rmse"].get<double>();
+  std::printf("[ faults ] %s: SE(3) ATE %.4f m\n", name.c_str(), run.ate_se3);
   return run;
 }
 
@@ -95,7 +98,7 @@ void expectImuGapBridged(const std::string& name, double duration, double bound)
 }
 
 TEST(Faults, AnImuGapIsCountedAndTheLidarCarriesTheMotion) {
-  // Measured 4.7 mm (22 mm before the gap was filled, odometry/imu_gap_fill.h).
+  // Measured 9.0 mm (22 mm before the gap was filled, odometry/imu_gap_fill.h).
   expectImuGapBridged("gap", 0.5, 0.012);
 }
 
@@ -103,7 +106,7 @@ TEST(Faults, ATwoSecondImuGapWhileWalkingCostsMillimetres) {
   // The corridor's axis is one the LiDAR barely sees: the fill's constant
   // velocity carries the pose along it. Before: diverged (SE(3) ATE 57.9 m,
   // the interpolated signal's acceleration integrated along the axis);
-  // measured 6.3 mm (clean 4.5 mm).
+  // measured 9.6 mm (clean 8.4 mm).
   expectImuGapBridged("gap2", 2.0, 0.015);
 }
 
@@ -133,8 +136,8 @@ TEST(Faults, SingleDroppedScansAreCounted) {
 
 TEST(Faults, SustainedImuSaturationIsRemovedAndBridgedAsADropout) {
   // 0.2 s with gyro x stuck at 2000 deg/s and accel z at 16 g (a knock):
-  // without the check the run diverged (SE(3) ATE 152 m); measured 3.8 mm (10.4 mm before the
-  // removed run was filled like a gap).
+  // without the check the run diverged (SE(3) ATE 152 m); measured 8.6 mm (10.4 mm before the
+  // removed run was filled like a gap, with clean 4.5 mm).
   test::TempDir dir;
   const FaultRun run = runWithFaults(dir, "saturation", "--fault imu_saturation@12+0.2");
   const auto& runs = run.report["faults"]["imu_saturation"];
@@ -149,8 +152,8 @@ TEST(Faults, SustainedImuSaturationIsRemovedAndBridgedAsADropout) {
 
 TEST(Faults, AnOccludedLidarLosesTheBodyAndKeepsRegistering) {
   // 4 s with 270 deg of every scan ending on a body at 0.35 m: its points
-  // are removed and the rest registered. Measured 4.6 mm (18.6 mm when the
-  // scans were skipped, 5.5 mm with the body left in).
+  // are removed and the rest registered. Measured 8.5 mm (18.6 mm when the
+  // scans were skipped, 5.5 mm with the body left in, when clean was 4.5 mm).
   test::TempDir dir;
   const FaultRun run = runWithFaults(dir, "occlusion", "--fault occlusion@10+4");
   const auto& occluded = run.report["faults"]["lidar_occluded"];
@@ -171,7 +174,7 @@ void expectWholeLogUsed(const FaultRun& run) {
 
 TEST(Faults, AnImuClockJumpIsUndone) {
   // The IMU's stamps jump back by 2 s at 12 s: before, every later sample
-  // was dropped and half the log lost; now re-aligned, measured 4.5 mm (the
+  // was dropped and half the log lost; now re-aligned, measured 8.4 mm (the
   // clean run's).
   test::TempDir dir;
   const FaultRun run = runWithFaults(dir, "imu_jump", "--fault imu_clock_jump@12-2");
@@ -182,12 +185,12 @@ TEST(Faults, AnImuClockJumpIsUndone) {
   EXPECT_EQ(run.report["faults"].size(), 1u) << run.report["faults"].dump();
   EXPECT_EQ(countOf(run.err, "clock jump at"), 1u) << run.err;
   expectWholeLogUsed(run);
-  EXPECT_LT(run.ate_se3, 0.008);
+  EXPECT_LT(run.ate_se3, 0.012);
 }
 
 TEST(Faults, ALidarClockJumpIsUndone) {
   // The scans' stamps jump forwards by 1.5 s at 12 s (before: the rest of
-  // the log lost); measured 4.5 mm.
+  // the log lost); measured 8.5 mm.
   test::TempDir dir;
   const FaultRun run = runWithFaults(dir, "lidar_jump", "--fault lidar_clock_jump@12+1.5");
   const auto& jumps = run.report["faults"]["clock_jump"];
@@ -196,7 +199,7 @@ TEST(Faults, ALidarClockJumpIsUndone) {
   EXPECT_EQ(jumps["events"][0]["detail"], "LiDAR stamps jumped by +1.500 s");
   EXPECT_EQ(run.report["faults"].size(), 1u) << run.report["faults"].dump();
   expectWholeLogUsed(run);
-  EXPECT_LT(run.ate_se3, 0.008);
+  EXPECT_LT(run.ate_se3, 0.012);
 }
 
 TEST(Faults, AConstantImuLidarTimeOffsetIsDetected) {
@@ -204,8 +207,8 @@ TEST(Faults, AConstantImuLidarTimeOffsetIsDetected) {
   // is a constant offset the calibration does not know): detected from the
   // LiDAR's rotations against the gyro's, counted, warned about once; the
   // estimate is a lower bound (2.8 +- 0.4 ms measured; the clean run shows
-  // 0.03 +- 0.17 ms). ATE 6.5 mm (clean 4.5 mm, 4.5 mm with the offset in
-  // the calibration).
+  // 0.03 +- 0.17 ms). ATE 8.1 mm (before the driver's clouds 6.5 mm, clean 4.5 mm, 4.5 mm with the
+  // offset in the calibration).
   test::TempDir dir;
   const FaultRun run = runWithFaults(dir, "time_offset", "--fault imu_clock_jump@0+0.01");
   const auto& offsets = run.report["faults"]["time_offset"];
@@ -222,7 +225,7 @@ TEST(Faults, AConstantImuLidarTimeOffsetIsDetected) {
 
 TEST(Faults, RepeatedMessagesAreDroppedAndCounted) {
   // 2 s of every IMU sample and scan recorded twice: the repeats dropped, one
-  // episode with its time, measured 4.5 mm (the clean run's).
+  // episode with its time, measured 8.4 mm (the clean run's).
   test::TempDir dir;
   const FaultRun run = runWithFaults(dir, "duplicate", "--fault duplicate@8+2");
   const auto& repeats = run.report["faults"]["duplicate_messages"];
@@ -232,12 +235,12 @@ TEST(Faults, RepeatedMessagesAreDroppedAndCounted) {
   EXPECT_EQ(run.report["faults"].size(), 1u) << run.report["faults"].dump();
   EXPECT_EQ(countOf(run.err, "repeated messages at"), 1u) << run.err;
   EXPECT_EQ(run.report["input"]["dropped_by_reader"]["imu_stamp_duplicate"], 801);
-  EXPECT_LT(run.ate_se3, 0.008);
+  EXPECT_LT(run.ate_se3, 0.012);
 }
 
 TEST(Faults, MessagesOutOfOrderArePutBackInOrder) {
   // 2 s of IMU samples each other one recorded after the next (before: the
-  // late half was dropped as going backwards): all kept, measured 4.5 mm.
+  // late half was dropped as going backwards): all kept, measured 8.4 mm.
   test::TempDir dir;
   const FaultRun run = runWithFaults(dir, "reorder", "--fault reorder@8+2");
   const auto& late = run.report["faults"]["out_of_order_messages"];
@@ -249,11 +252,11 @@ TEST(Faults, MessagesOutOfOrderArePutBackInOrder) {
   EXPECT_EQ(run.report["faults"].size(), 1u) << run.report["faults"].dump();
   EXPECT_EQ(countOf(run.err, "messages out of order at"), 1u) << run.err;
   expectWholeLogUsed(run);
-  EXPECT_LT(run.ate_se3, 0.008);
+  EXPECT_LT(run.ate_se3, 0.012);
 }
 
 TEST(Faults, NanPointsAndImuSamplesAreDroppedAndCounted) {
-  // 2 s of every 20th point and every 40th IMU sample NaN: measured 5.0 mm.
+  // 2 s of every 20th point and every 40th IMU sample NaN: measured 8.6 mm.
   test::TempDir dir;
   const FaultRun run = runWithFaults(dir, "nan", "--fault nan@8+2");
   const auto& nan = run.report["faults"]["not_finite_values"];
@@ -264,7 +267,7 @@ TEST(Faults, NanPointsAndImuSamplesAreDroppedAndCounted) {
   const auto& dropped = run.report["input"]["dropped_by_reader"];
   EXPECT_EQ(dropped["imu_not_finite"], 21);
   EXPECT_GT(dropped["point_not_finite"].get<int>(), 20000);
-  EXPECT_LT(run.ate_se3, 0.010);
+  EXPECT_LT(run.ate_se3, 0.012);
 }
 
 TEST(Faults, CtrlCStopsTheRunAtOnceAndSaysSo) {
