@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <numeric>
 
 namespace storey {
@@ -114,13 +116,23 @@ void selectFeatures(const Scan& scan, const FeatureConfig& config, const Ring& r
   if (eligible.empty()) return;
   std::vector<bool> suppressed(n, false);
   const int sectors = std::max(config.sectors, 1);
+  std::vector<std::uint64_t> keys;
+  std::vector<int> order;
   for (int s = 0; s < sectors; ++s) {
     const std::size_t begin = eligible.size() * s / sectors;
     const std::size_t end = eligible.size() * (s + 1) / sectors;
-    std::vector<int> order(eligible.begin() + begin, eligible.begin() + end);
-    std::sort(order.begin(), order.end(), [&](int a, int b) {
-      return ring.smoothness[a] > ring.smoothness[b] || (ring.smoothness[a] == ring.smoothness[b] && a < b);
-    });
+    // Smoothest last, ties by position: one integer sort on (smoothness, index)
+    // keys (a smoothness is >= 0, so its float bits order as it does).
+    keys.clear();
+    for (std::size_t e = begin; e < end; ++e) {
+      const int i = eligible[e];
+      std::uint32_t bits;
+      std::memcpy(&bits, &ring.smoothness[i], sizeof bits);
+      keys.push_back((static_cast<std::uint64_t>(~bits) << 32) | static_cast<std::uint32_t>(i));
+    }
+    std::sort(keys.begin(), keys.end());
+    order.resize(keys.size());
+    for (std::size_t j = 0; j < keys.size(); ++j) order[j] = static_cast<int>(keys[j] & 0xFFFFFFFFu);
     int picked = 0;
     for (int i : order) {
       if (ring.smoothness[i] <= config.edge_threshold) break;

@@ -201,6 +201,7 @@ bool LidarInertialOdometry::initialiseInMotion(bool at_end) {
           pending_.front().stamp_ns + time_offset_ns_ <= imu_.front().stamp_ns)) {
     ++(pending_.front().points.empty() ? drops_.empty : drops_.before_first_imu);
     pending_.pop_front();
+    front_span_ns_.reset();
   }
   if (pending_.empty()) {
     if (at_end) throw fail("the log has no scan inside the IMU data");
@@ -252,13 +253,15 @@ void LidarInertialOdometry::tryProcess(bool at_end) {
   while (!pending_.empty()) {
     const Scan& scan = pending_.front();
     const std::int64_t ref_ns = scan.stamp_ns + time_offset_ns_;
-    const std::int64_t end_ns = ref_ns + secondsToNs(std::max(0.0f, scan.timeSpan().second));
+    if (!front_span_ns_) front_span_ns_ = secondsToNs(std::max(0.0f, scan.timeSpan().second));
+    const std::int64_t end_ns = ref_ns + *front_span_ns_;
     if (imu_.back().stamp_ns < end_ns) {
       if (!at_end) return;
       // The log ends inside this scan: it cannot be deskewed (nor can any
       // later one); they are dropped and counted.
       drops_.after_last_imu += static_cast<std::int64_t>(pending_.size());
       pending_.clear();
+      front_span_ns_.reset();
       return;
     }
     if (scan.points.empty()) {
@@ -269,6 +272,7 @@ void LidarInertialOdometry::tryProcess(bool at_end) {
       processScan(scan);
     }
     pending_.pop_front();
+    front_span_ns_.reset();
     trimImu();
   }
 }

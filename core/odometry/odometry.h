@@ -14,6 +14,7 @@
 /// stages after it (data flow one way: odometry -> back end).
 #include <cstdint>
 #include <deque>
+#include <optional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -137,6 +138,9 @@ class LidarInertialOdometry {
   std::int64_t time_offset_ns_ = 0;
   std::vector<ImuSample> imu_;  ///< measured, and filled across dropouts
   std::deque<Scan> pending_;
+  /// The last point time of pending_.front() past its stamp [ns], once computed
+  /// (tryProcess runs for every IMU sample while the scan waits for them).
+  std::optional<std::int64_t> front_span_ns_;
   bool initialised_ = false;
   bool origin_set_ = false;
   ImuState initial_state_;

@@ -91,27 +91,45 @@ int VoxelMap::nearest(const Eigen::Vector3f& query, int k, float max_distance,
   int found = 0;
   float worst = max_distance * max_distance;
   const Eigen::Vector3i c = cellOf(query);
-  for (int dx = -1; dx <= 1; ++dx) {
-    for (int dy = -1; dy <= 1; ++dy) {
-      for (int dz = -1; dz <= 1; ++dz) {
-        const auto it = voxels_.find(keyOf(c.x() + dx, c.y() + dy, c.z() + dz));
-        if (it == voxels_.end()) continue;
-        for (const MapPoint& m : it->second) {
-          const float d2 = (m.p - query).squaredNorm();
-          if (d2 > worst) continue;
-          int i = found < k ? found++ : k - 1;
-          while (i > 0 && best_d2[i - 1] > d2) {
-            best_d2[i] = best_d2[i - 1];
-            best[i] = best[i - 1];
-            --i;
-          }
-          best_d2[i] = d2;
-          best[i] = &m;
-          if (found == k) worst = best_d2[k - 1];
-        }
-      }
-    }
+  // How far the query is from its cell's lower and upper faces on each axis,
+  // less a margin for the rounding of a point's cell: a neighbour cell
+  // farther than the k-th candidate so far holds no better point and is
+  // skipped (so is its hash lookup). The query's own cell comes first, so
+  // the candidates are near before the neighbour cells are tested.
+  constexpr float kMargin = 1e-3f;  // [m], far above float rounding at building scale
+  const float size = 1.0f / inverse_size_;
+  float gap[3][3];  // [axis][offset + 1]: the per-axis distance to the neighbour cell
+  for (int a = 0; a < 3; ++a) {
+    const float lower = static_cast<float>(c[a]) * size;
+    gap[a][0] = std::max(0.0f, query[a] - lower - kMargin);
+    gap[a][1] = 0.0f;
+    gap[a][2] = std::max(0.0f, lower + size - query[a] - kMargin);
   }
+  const auto search = [&](int dx, int dy, int dz) {
+    const float box_d2 = gap[0][dx + 1] * gap[0][dx + 1] + gap[1][dy + 1] * gap[1][dy + 1] +
+                         gap[2][dz + 1] * gap[2][dz + 1];
+    if (box_d2 > worst) return;
+    const auto it = voxels_.find(keyOf(c.x() + dx, c.y() + dy, c.z() + dz));
+    if (it == voxels_.end()) return;
+    for (const MapPoint& m : it->second) {
+      const float d2 = (m.p - query).squaredNorm();
+      if (d2 > worst) continue;
+      int i = found < k ? found++ : k - 1;
+      while (i > 0 && best_d2[i - 1] > d2) {
+        best_d2[i] = best_d2[i - 1];
+        best[i] = best[i - 1];
+        --i;
+      }
+      best_d2[i] = d2;
+      best[i] = &m;
+      if (found == k) worst = best_d2[k - 1];
+    }
+  };
+  search(0, 0, 0);
+  for (int dx = -1; dx <= 1; ++dx)
+    for (int dy = -1; dy <= 1; ++dy)
+      for (int dz = -1; dz <= 1; ++dz)
+        if (dx != 0 || dy != 0 || dz != 0) search(dx, dy, dz);
   for (int i = 0; i < found; ++i) out[i] = best[i]->p;
   if (views_out)
     for (int i = 0; i < found; ++i) views_out[i] = best[i]->view;
