@@ -59,6 +59,12 @@ int main(int argc, char** argv) {
   run_cmd->add_flag("--no-render", run.no_render,
                     "no PNG renders at the end (render them later with `storey render OUT`)");
   run_cmd
+      ->add_option("--threads", run.threads,
+                   "threads: 1 = all on one thread (no read-ahead of the log); 0 = all cores. The "
+                   "outputs are the same bytes either way")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
+  run_cmd
       ->add_option("--preset", run.preset,
                    "without LOG: the simulated building to map (tiny, default, building-a, "
                    "building-b, long-walk, or random:SEED)")

@@ -31,6 +31,9 @@ struct RunOptions {
   std::string preset = "default";  ///< building simulated when no log is given
   bool no_srp = false;
   bool no_render = false;  ///< --no-render: no PNG renders at the end (render.enabled = false)
+  /// --threads: 1 = everything on the run's thread (input.read_ahead_scans = 0);
+  /// 0 (all cores) or more = the configuration's. Same results either way.
+  int threads = 0;
 };
 
 struct InfoOptions {

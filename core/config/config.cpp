@@ -35,6 +35,7 @@ void visitInput(V& v, InputConfig& c) {
   v.field("imu_saturation_gyro", c.imu_saturation_gyro);
   v.field("imu_saturation_accel", c.imu_saturation_accel);
   v.field("lidar_occlusion_fraction", c.lidar_occlusion_fraction);
+  v.field("read_ahead_scans", c.read_ahead_scans);
 }
 
 template <typename V>

@@ -24,6 +24,8 @@ void InputConfig::validate() const {
   requireKey(imu_saturation_accel >= 0.0, "input.imu_saturation_accel", "must be >= 0 (0 = off)");
   requireKey(lidar_occlusion_fraction >= 0.0 && lidar_occlusion_fraction < 1.0,
              "input.lidar_occlusion_fraction", "must be in [0, 1) (0 = off)");
+  requireKey(read_ahead_scans >= 0 && read_ahead_scans <= 64, "input.read_ahead_scans",
+             "must be in [0, 64] (0 = read on the run's thread)");
 }
 
 }  // namespace storey

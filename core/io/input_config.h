@@ -41,6 +41,10 @@ struct InputConfig {
   /// sensor): its points within 0.5 m are removed, and with less than 10 %
   /// of the usual left it is skipped; 0 = off [-].
   double lidar_occlusion_fraction = 0.4;
+  /// Scans read, decoded and checked ahead on a thread of their own while
+  /// the current one is registered (io/read_ahead_log_reader.h); 0 = the log
+  /// is read on the run's own thread. The results are the same either way.
+  int read_ahead_scans = 4;
 
   /// Checks value ranges; throws storey::Error naming the key (under `input.`) at fault.
   void validate() const;

@@ -10,10 +10,14 @@ namespace storey {
 
 const char* toString(FeatureReject reason) {
   switch (reason) {
-    case FeatureReject::kRingGap: return "ring gap";
-    case FeatureReject::kOccluded: return "occluded";
-    case FeatureReject::kParallelBeam: return "parallel beam";
-    case FeatureReject::kCount: break;
+    case FeatureReject::kRingGap:
+      return "ring gap";
+    case FeatureReject::kOccluded:
+      return "occluded";
+    case FeatureReject::kParallelBeam:
+      return "parallel beam";
+    case FeatureReject::kCount:
+      break;
   }
   return "unknown";
 }
@@ -26,7 +30,7 @@ constexpr std::uint8_t kEligible = 0xFF;
 struct Ring {
   std::vector<std::uint32_t> index;  // into scan.points
   std::vector<float> range;
-  std::vector<int> segment;          // contiguous runs without a gap
+  std::vector<int> segment;  // contiguous runs without a gap
   std::vector<float> smoothness;
   std::vector<std::uint8_t> status;  // kEligible or a FeatureReject value
 };
@@ -75,8 +79,9 @@ void markUnreliable(const Scan& scan, const FeatureConfig& config, Ring& ring) {
   for (int i = 0; i + 1 < n; ++i) {
     if (ring.segment[i] != ring.segment[i + 1]) continue;
     const float jump = ring.range[i] - ring.range[i + 1];
-    if (jump > config.occlusion_gap) mark(i - k, i, FeatureReject::kOccluded);       // i behind
-    if (-jump > config.occlusion_gap) mark(i + 1, i + 1 + k, FeatureReject::kOccluded);  // i+1 behind
+    if (jump > config.occlusion_gap) mark(i - k, i, FeatureReject::kOccluded);  // i behind
+    if (-jump > config.occlusion_gap)
+      mark(i + 1, i + 1 + k, FeatureReject::kOccluded);  // i+1 behind
   }
   for (int i = 1; i + 1 < n; ++i) {
     const float limit = static_cast<float>(config.parallel_ratio) * ring.range[i];
@@ -132,7 +137,8 @@ void selectFeatures(const Scan& scan, const FeatureConfig& config, const Ring& r
     }
     std::sort(keys.begin(), keys.end());
     order.resize(keys.size());
-    for (std::size_t j = 0; j < keys.size(); ++j) order[j] = static_cast<int>(keys[j] & 0xFFFFFFFFu);
+    for (std::size_t j = 0; j < keys.size(); ++j)
+      order[j] = static_cast<int>(keys[j] & 0xFFFFFFFFu);
     int picked = 0;
     for (int i : order) {
       if (ring.smoothness[i] <= config.edge_threshold) break;
@@ -140,7 +146,8 @@ void selectFeatures(const Scan& scan, const FeatureConfig& config, const Ring& r
       if (suppressed[i] || picked >= config.max_edges_per_sector) continue;
       edges.push_back(scan.points[ring.index[i]].p);
       ++picked;
-      for (int j = std::max(i - config.neighbours, 0); j <= std::min(i + config.neighbours, n - 1); ++j)
+      for (int j = std::max(i - config.neighbours, 0); j <= std::min(i + config.neighbours, n - 1);
+           ++j)
         if (ring.segment[j] == ring.segment[i]) suppressed[j] = true;
     }
     for (int i : order) {

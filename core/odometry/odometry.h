@@ -14,8 +14,8 @@
 /// stages after it (data flow one way: odometry -> back end).
 #include <cstdint>
 #include <deque>
-#include <optional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 

@@ -16,7 +16,9 @@ Eigen::Vector3i VoxelMap::cellOf(const Eigen::Vector3f& p) const {
 }
 
 VoxelMap::Key VoxelMap::keyOf(std::int64_t x, std::int64_t y, std::int64_t z) const {
-  const auto pack = [](std::int64_t v) { return static_cast<std::uint64_t>(v + (1 << 20)) & 0x1FFFFF; };
+  const auto pack = [](std::int64_t v) {
+    return static_cast<std::uint64_t>(v + (1 << 20)) & 0x1FFFFF;
+  };
   return (pack(x) << 42) | (pack(y) << 21) | pack(z);
 }
 
@@ -58,8 +60,9 @@ void VoxelMap::insert(const std::vector<Eigen::Vector3f>& points_world,
 void VoxelMap::removeFar(const Eigen::Vector3d& sensor_world) {
   const double max_squared = config_.max_range * config_.max_range;
   for (auto it = voxels_.begin(); it != voxels_.end();) {
-    const bool far = !it->second.empty() &&
-                     (it->second.front().p.cast<double>() - sensor_world).squaredNorm() > max_squared;
+    const bool far =
+        !it->second.empty() &&
+        (it->second.front().p.cast<double>() - sensor_world).squaredNorm() > max_squared;
     if (far || it->second.empty()) {
       point_count_ -= it->second.size();
       it = voxels_.erase(it);
@@ -81,8 +84,8 @@ void VoxelMap::transform(const Pose& T) {
   for (const MapPoint& m : points) insertPoint(m.p, m.view);
 }
 
-int VoxelMap::nearest(const Eigen::Vector3f& query, int k, float max_distance,
-                      Eigen::Vector3f* out, Eigen::Vector3f* views_out) const {
+int VoxelMap::nearest(const Eigen::Vector3f& query, int k, float max_distance, Eigen::Vector3f* out,
+                      Eigen::Vector3f* views_out) const {
   k = std::clamp(k, 0, kMaxNeighbours);
   if (k == 0) return 0;
   // Insertion into a small sorted array: k is tiny, the candidates a few hundred.

@@ -10,6 +10,7 @@
 #include "common/stopwatch.h"
 #include "io/imu_guard.h"
 #include "io/log_reader.h"
+#include "io/read_ahead_log_reader.h"
 #include "map/map_scan_selector.h"
 #include "odometry/odometry.h"
 #include "pipeline/map_stage.h"
@@ -28,6 +29,8 @@ PipelineResult runPipeline(const std::string& log_path, const Config& config,
   FaultLog faults;
   std::unique_ptr<LogReader> reader = std::make_unique<GuardedLogReader>(
       openLog(log_path, config.input, config.sensor), config.input, config.sensor.imu, faults);
+  if (config.input.read_ahead_scans > 0)
+    reader = std::make_unique<ReadAheadLogReader>(std::move(reader), config.input.read_ahead_scans);
   logInfo("reading " + reader->describe());
   auto odometry = std::make_unique<LidarInertialOdometry>(config.odometry, config.sensor);
   std::unique_ptr<Backend> backend = makeBackend(config.backend);

@@ -27,20 +27,39 @@ std::string firstDifference(const std::string& expected, const std::string& actu
   }
 }
 
-TEST(Golden, TinyPresetWritesTheGoldenFiles) {
+/// Runs `storey run --preset tiny --no-render EXTRA` into `out` and checks
+/// the golden files.
+void expectGoldenRun(const test::TempDir& dir, const std::string& out, const std::string& extra) {
   const std::filesystem::path golden =
       std::filesystem::path(STOREY_SOURCE_DIR) / "tests/golden/tiny";
-  test::TempDir dir;
-  const std::string out = (dir.path() / "out").string();
   const test::RunResult run = test::runStorey(
-      "run --preset tiny --no-render -o " + test::shellQuoted(out), dir.path().string());
+      "run --preset tiny --no-render -o " + test::shellQuoted(out) + extra, dir.path().string());
   ASSERT_EQ(run.exit_code, 0) << run.err;
   for (const char* name : {"trajectory.tum", "keyframes.tum", "planes.json", "storeys.json"}) {
     const std::string expected = test::readText((golden / name).string());
     ASSERT_FALSE(expected.empty()) << "golden file missing: " << (golden / name);
     const std::string actual = test::readText((std::filesystem::path(out) / name).string());
     EXPECT_TRUE(expected == actual)
-        << name << " differs from the golden file, " << firstDifference(expected, actual);
+        << name << extra << " differs from the golden file, " << firstDifference(expected, actual);
+  }
+}
+
+TEST(Golden, TinyPresetWritesTheGoldenFiles) {
+  test::TempDir dir;
+  expectGoldenRun(dir, dir.file("out"), "");
+}
+
+// Issue 23: the same bytes whatever the number of threads (by default the
+// log is read ahead on a second thread, input.read_ahead_scans).
+TEST(Golden, OneThreadWritesTheSameBytes) {
+  test::TempDir dir;
+  const std::string one = dir.file("one"), all = dir.file("all");
+  expectGoldenRun(dir, one, " --threads 1");
+  expectGoldenRun(dir, all, " --threads 2");
+  for (const char* name : {"odometry.tum", "map.las", "map.ply", "map.pcd"}) {
+    const std::string a = test::readText(one + "/" + name);
+    ASSERT_FALSE(a.empty()) << name;
+    EXPECT_TRUE(a == test::readText(all + "/" + name)) << name << " differs";
   }
 }
 
