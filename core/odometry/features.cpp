@@ -93,21 +93,41 @@ void markUnreliable(const Scan& scan, const FeatureConfig& config, Ring& ring) {
   (void)scan;
 }
 
+/// Smoothness of each point: |sum of the offsets to its 2k neighbours| / sum
+/// of their lengths. Computed offset by offset over the whole ring from
+/// coordinate arrays, so that the loop over points vectorises (features.cpp
+/// is built with -fno-math-errno for the square roots); each point's sums
+/// add the same terms in the same order as one point at a time would.
 void computeSmoothness(const Scan& scan, const FeatureConfig& config, Ring& ring) {
   const int k = config.neighbours;
   const int n = static_cast<int>(ring.index.size());
   ring.smoothness.assign(n, 0.0f);
-  for (int i = k; i + k < n; ++i) {
-    if (ring.status[i] == static_cast<std::uint8_t>(FeatureReject::kRingGap)) continue;
+  if (n < 2 * k + 1) return;
+  std::vector<float> x(n), y(n), z(n);
+  for (int i = 0; i < n; ++i) {
     const Eigen::Vector3f& p = scan.points[ring.index[i]].p;
-    Eigen::Vector3f sum = Eigen::Vector3f::Zero();
-    float length = 0.0f;
-    for (int j = i - k; j <= i + k; ++j) {
-      const Eigen::Vector3f offset = scan.points[ring.index[j]].p - p;
-      sum += offset;
-      length += offset.norm();
+    x[i] = p.x();
+    y[i] = p.y();
+    z[i] = p.z();
+  }
+  const int first = k, end = n - k;  // points with k neighbours on each side
+  std::vector<float> sum_x(n, 0.0f), sum_y(n, 0.0f), sum_z(n, 0.0f), length(n, 0.0f);
+  for (int j = -k; j <= k; ++j) {
+    for (int i = first; i < end; ++i) {
+      const float dx = x[i + j] - x[i];
+      const float dy = y[i + j] - y[i];
+      const float dz = z[i + j] - z[i];
+      sum_x[i] += dx;
+      sum_y[i] += dy;
+      sum_z[i] += dz;
+      length[i] += std::sqrt(dx * dx + (dy * dy + dz * dz));  // Eigen's squaredNorm order
     }
-    ring.smoothness[i] = length > 0.0f ? sum.norm() / length : 0.0f;
+  }
+  for (int i = first; i < end; ++i) {
+    if (ring.status[i] == static_cast<std::uint8_t>(FeatureReject::kRingGap)) continue;
+    const float sum_norm =
+        std::sqrt(sum_x[i] * sum_x[i] + (sum_y[i] * sum_y[i] + sum_z[i] * sum_z[i]));
+    ring.smoothness[i] = length[i] > 0.0f ? sum_norm / length[i] : 0.0f;
   }
 }
 
