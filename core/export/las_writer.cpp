@@ -85,9 +85,21 @@ void writeLas(const std::string& path, const MapCloud& cloud,
   putExtraBytesDescriptor(vlr, 6, "keyframe", "keyframe that observed the point", false, 0);
   putExtraBytesDescriptor(vlr, 1, "flags", "bit0 stairs, bit1 floor", false, 0);
 
-  const std::time_t now = std::time(nullptr);
+  // The header's creation day is the day the data were recorded (UTC, from
+  // the earliest point time: a log's clock is Unix time), so the same log
+  // gives the same file on any day; a clock that is no date (before 1980,
+  // e.g. time since the sensor booted) leaves the day and year 0.
+  double earliest = 0.0;
+  for (std::size_t k = 0; k < n; ++k) {
+    const double t = cloud.time[selection.at(k)];
+    if (k == 0 || t < earliest) earliest = t;
+  }
   std::tm utc{};
-  gmtime_r(&now, &utc);
+  const bool dated = earliest >= 315532800.0 && earliest < 4102444800.0;  // 1980 .. 2100
+  if (dated) {
+    const std::time_t recorded = static_cast<std::time_t>(earliest);
+    gmtime_r(&recorded, &utc);
+  }
 
   std::string header;
   header.reserve(las::kHeaderSize);
@@ -101,8 +113,8 @@ void writeLas(const std::string& path, const MapCloud& cloud,
   put<std::uint8_t>(header, 4);
   putChars(header, "Storey LiDAR-inertial SLAM", 32);
   putChars(header, std::string("Storey ") + storeyVersion(), 32);
-  put<std::uint16_t>(header, static_cast<std::uint16_t>(utc.tm_yday + 1));
-  put<std::uint16_t>(header, static_cast<std::uint16_t>(utc.tm_year + 1900));
+  put<std::uint16_t>(header, static_cast<std::uint16_t>(dated ? utc.tm_yday + 1 : 0));
+  put<std::uint16_t>(header, static_cast<std::uint16_t>(dated ? utc.tm_year + 1900 : 0));
   put<std::uint16_t>(header, las::kHeaderSize);
   put<std::uint32_t>(header, static_cast<std::uint32_t>(las::kHeaderSize + vlr.size()));
   put<std::uint32_t>(header, 1);  // number of VLRs

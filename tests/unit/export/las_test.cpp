@@ -47,13 +47,13 @@ TEST(Las, HeaderVlrAndRecordsRoundTrip) {
   EXPECT_EQ(f.at<std::uint16_t>(6) & 0x10, 0x10);  // WKT bit, required with PDRF 6
   EXPECT_EQ(f.at<std::uint8_t>(24), 1);            // version 1.4
   EXPECT_EQ(f.at<std::uint8_t>(25), 4);
-  EXPECT_EQ(f.at<std::uint16_t>(94), 375);         // header size
+  EXPECT_EQ(f.at<std::uint16_t>(94), 375);  // header size
   const std::uint32_t point_offset = f.at<std::uint32_t>(96);
-  EXPECT_EQ(f.at<std::uint32_t>(100), 1u);         // VLRs
-  EXPECT_EQ(f.at<std::uint8_t>(104), 6);           // point data record format
+  EXPECT_EQ(f.at<std::uint32_t>(100), 1u);  // VLRs
+  EXPECT_EQ(f.at<std::uint8_t>(104), 6);    // point data record format
   const std::uint16_t record_length = f.at<std::uint16_t>(105);
   EXPECT_EQ(record_length, 30 + 7);
-  EXPECT_EQ(f.at<std::uint32_t>(107), 0u);         // legacy count: 0 with PDRF 6
+  EXPECT_EQ(f.at<std::uint32_t>(107), 0u);  // legacy count: 0 with PDRF 6
   for (int r = 0; r < 5; ++r) EXPECT_EQ(f.at<std::uint32_t>(111 + 4 * r), 0u);
   double scale[3], offset[3];
   for (int a = 0; a < 3; ++a) {
@@ -112,6 +112,23 @@ TEST(Las, HeaderVlrAndRecordsRoundTrip) {
   EXPECT_NEAR(min_z, lo[2], 1e-9);
   EXPECT_NEAR(max_z, hi[2], 1e-9);
   EXPECT_DOUBLE_EQ(offset[0], 1000.0);  // the minimum rounded down to the metre
+}
+
+// The header's creation day and year are the data's (UTC), not the day the
+// file was written: the same log gives the same bytes on any day.
+TEST(Las, CreationDayIsTheDayOfTheData) {
+  test::TempDir dir;
+  MapCloud cloud = test::sampleCloud();
+  for (std::size_t i = 0; i < cloud.size(); ++i) cloud.time[i] = 1.7e9 + 3600.0 * i;
+  writeLas(dir.file("dated.las"), cloud);
+  const Bytes dated = readAll(dir.file("dated.las"));
+  EXPECT_EQ(dated.at<std::uint16_t>(90), 318);  // 1.7e9 s: 2023-11-14 22:13:20 UTC
+  EXPECT_EQ(dated.at<std::uint16_t>(92), 2023);
+  for (std::size_t i = 0; i < cloud.size(); ++i) cloud.time[i] = 12.5 + i;  // since boot
+  writeLas(dir.file("undated.las"), cloud);
+  const Bytes undated = readAll(dir.file("undated.las"));
+  EXPECT_EQ(undated.at<std::uint16_t>(90), 0);
+  EXPECT_EQ(undated.at<std::uint16_t>(92), 0);
 }
 
 TEST(Las, SubsetAndEmptyFiles) {
