@@ -1,0 +1,114 @@
+#!/usr/bin/env bash
+# Side-by-side speed of two builds of `storey run` on one log (issue 23,
+# docs/benchmarks.md "Speed"):
+#   scripts/speed_compare.sh [-o DIR] [--runs N] [--spec SPEC] [--duration S] [--log LOG --calibration YAML]
+#                            BEFORE AFTER
+# BEFORE and AFTER are `storey` binaries, or git revisions (commit, tag,
+# branch) that are built in DIR/build-REV from a worktree of this repository.
+# The log is simulated once into DIR/sim from SPEC (default `default`, cut to
+# --duration seconds, default 120) unless --log is given. The two builds map
+# it alternately (BEFORE, AFTER, BEFORE, ...) N times each (default 3), with
+# --no-render; each run's wall and CPU time (/usr/bin/time), its peak RSS and
+# the odometry's median per scan (report.json) are kept in DIR/runs.csv. Prints
+# the medians per build and the ratios AFTER / BEFORE, and whether the two
+# builds wrote the same trajectory.tum. Run it on an otherwise idle machine.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+out=speed_compare_out
+runs=3
+spec=default
+duration=120
+log=""
+calibration=""
+builds=()
+while [[ $# -gt 0 ]]; do
+  case "$1" in
+    -o | --out) out="$2"; shift 2 ;;
+    --runs) runs="$2"; shift 2 ;;
+    --spec) spec="$2"; shift 2 ;;
+    --duration) duration="$2"; shift 2 ;;
+    --log) log="$2"; shift 2 ;;
+    --calibration) calibration="$2"; shift 2 ;;
+    -*) echo "speed_compare.sh: unknown option $1" >&2; exit 1 ;;
+    *) builds+=("$1"); shift ;;
+  esac
+done
+if [[ ${#builds[@]} != 2 ]]; then
+  echo "speed_compare.sh: give two builds (storey binaries or git revisions): BEFORE AFTER" >&2
+  exit 1
+fi
+mkdir -p "$out"
+out="$(cd "$out" && pwd)"
+
+# A storey binary for a build argument: the file itself, or the revision built.
+binary_of() {
+  local build="$1"
+  if [[ -x "$build" && ! -d "$build" ]]; then
+    echo "$(cd "$(dirname "$build")" && pwd)/$(basename "$build")"
+    return
+  fi
+  local rev
+  rev="$(git rev-parse --verify --short "$build^{commit}" 2>/dev/null)" || {
+    echo "speed_compare.sh: $build is neither a storey binary nor a git revision" >&2
+    exit 1
+  }
+  local tree="$out/build-$rev"
+  if [[ ! -x "$tree/build/release/batch/storey" ]]; then
+    echo "speed_compare: building $build ($rev) in $tree" >&2
+    rm -rf "$tree"
+    git worktree add --detach "$tree" "$rev" >/dev/null 2>&1 || git worktree add -f --detach "$tree" "$rev" >&2
+    (cd "$tree" && cmake --preset release >/dev/null && cmake --build --preset release --target storey >&2)
+  fi
+  echo "$tree/build/release/batch/storey"
+}
+before="$(binary_of "${builds[0]}")"
+after="$(binary_of "${builds[1]}")"
+
+if [[ -z "$log" ]]; then
+  sim="$out/sim"
+  key="$spec $duration"
+  if [[ -f "$sim/simulation.bag" && "$(cat "$out/sim.key" 2>/dev/null)" == "$key" ]]; then
+    echo "speed_compare: reusing $sim ($key)"
+  else
+    echo "speed_compare: simulating $spec (${duration} s) into $sim"
+    rm -rf "$sim"
+    "$after" simulate "$spec" --duration "$duration" --no-progress -o "$sim" >/dev/null
+    echo "$key" >"$out/sim.key"
+  fi
+  log="$sim/simulation.bag"
+  calibration="$sim/calibration.yaml"
+fi
+run_args=(--no-render)
+if [[ -n "$calibration" ]]; then run_args+=(--calibration "$calibration"); fi
+
+echo "build,run,wall_s,cpu_s,peak_mib,odometry_ms_per_scan" >"$out/runs.csv"
+for ((k = 1; k <= runs; ++k)); do
+  for which in before after; do
+    bin="$before"
+    if [[ $which == after ]]; then bin="$after"; fi
+    dir="$out/run-$which"
+    rm -rf "$dir"
+    /usr/bin/time -f "%e %U %S %M" -o "$out/time.txt" "$bin" run "$log" "${run_args[@]}" -o "$dir" \
+      >"$out/run-$which.log" 2>&1
+    read -r wall user sys rss_kb <"$out/time.txt"
+    odometry=$(python3 -c "import json,sys; print(json.load(open(sys.argv[1]))['odometry']['timing_ms']['total_per_scan']['median'])" "$dir/report.json")
+    echo "$which,$k,$wall,$(python3 -c "print($user + $sys)"),$((rss_kb / 1024)),$odometry" >>"$out/runs.csv"
+    echo "speed_compare: $which run $k: wall $wall s, odometry $odometry ms per scan"
+  done
+done
+
+python3 - "$out/runs.csv" <<'PY'
+import csv, statistics, sys
+rows = list(csv.DictReader(open(sys.argv[1])))
+cols = ["wall_s", "cpu_s", "peak_mib", "odometry_ms_per_scan"]
+med = {b: {c: statistics.median(float(r[c]) for r in rows if r["build"] == b) for c in cols}
+       for b in ("before", "after")}
+print(f"{'median of ' + str(len(rows) // 2) + ' runs':24} {'before':>10} {'after':>10} {'after/before':>13}")
+for c in cols:
+    print(f"{c:24} {med['before'][c]:10.3f} {med['after'][c]:10.3f} {med['after'][c] / med['before'][c]:13.3f}")
+PY
+if cmp -s "$out/run-before/trajectory.tum" "$out/run-after/trajectory.tum"; then
+  echo "trajectory.tum: the same bytes from both builds"
+else
+  echo "trajectory.tum: the builds differ"
+fi
