@@ -3,8 +3,9 @@
 # docs/benchmarks.md "Speed"):
 #   scripts/speed_compare.sh [-o DIR] [--runs N] [--spec SPEC] [--duration S] [--log LOG --calibration YAML]
 #                            BEFORE AFTER
-# BEFORE and AFTER are `storey` binaries, or git revisions (commit, tag,
-# branch) that are built in DIR/build-REV from a worktree of this repository.
+# BEFORE and AFTER are `storey` binaries. The previous release's, for
+# example: git worktree add ../storey-prev REV && (cd ../storey-prev &&
+# scripts/build.sh --target storey), then ../storey-prev/build/release/batch/storey.
 # The log is simulated once into DIR/sim from SPEC (default `default`, cut to
 # --duration seconds, default 120) unless --log is given. The two builds map
 # it alternately (BEFORE, AFTER, BEFORE, ...) N times each (default 3), with
@@ -34,32 +35,19 @@ while [[ $# -gt 0 ]]; do
   esac
 done
 if [[ ${#builds[@]} != 2 ]]; then
-  echo "speed_compare.sh: give two builds (storey binaries or git revisions): BEFORE AFTER" >&2
+  echo "speed_compare.sh: give two storey binaries: BEFORE AFTER" >&2
   exit 1
 fi
 mkdir -p "$out"
 out="$(cd "$out" && pwd)"
 
-# A storey binary for a build argument: the file itself, or the revision built.
+# A storey binary for a build argument, as an absolute path.
 binary_of() {
-  local build="$1"
-  if [[ -x "$build" && ! -d "$build" ]]; then
-    echo "$(cd "$(dirname "$build")" && pwd)/$(basename "$build")"
-    return
-  fi
-  local rev
-  rev="$(git rev-parse --verify --short "$build^{commit}" 2>/dev/null)" || {
-    echo "speed_compare.sh: $build is neither a storey binary nor a git revision" >&2
+  if [[ ! -x "$1" || -d "$1" ]]; then
+    echo "speed_compare.sh: $1 is not a storey binary" >&2
     exit 1
-  }
-  local tree="$out/build-$rev"
-  if [[ ! -x "$tree/build/release/batch/storey" ]]; then
-    echo "speed_compare: building $build ($rev) in $tree" >&2
-    rm -rf "$tree"
-    git worktree add --detach "$tree" "$rev" >/dev/null 2>&1 || git worktree add -f --detach "$tree" "$rev" >&2
-    (cd "$tree" && cmake --preset release >/dev/null && cmake --build --preset release --target storey >&2)
   fi
-  echo "$tree/build/release/batch/storey"
+  echo "$(cd "$(dirname "$1")" && pwd)/$(basename "$1")"
 }
 before="$(binary_of "${builds[0]}")"
 after="$(binary_of "${builds[1]}")"
