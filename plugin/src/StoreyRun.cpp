@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <vector>
 
 #include "common/error.h"
 #include "config/config.h"
@@ -14,12 +15,17 @@ namespace fs = std::filesystem;
 
 std::string resolveCalibration(const RunRequest& request) {
   if (!request.calibration_path.empty()) return request.calibration_path;
-  const fs::path log(request.log_path);
-  // A PCD folder's calibration sits inside it; a file's beside it.
-  const fs::path folder = fs::is_directory(log) ? log : log.parent_path();
-  const fs::path beside = folder / "calibration.yaml";
+  fs::path log(request.log_path);
+  if (!log.has_filename()) log = log.parent_path();  // "folder/"
   std::error_code ec;
-  return fs::is_regular_file(beside, ec) ? beside.string() : std::string();
+  // A folder's calibration (a PCD folder, a rosbag2 folder) sits inside it
+  // or beside it (as `storey simulate --ros2` writes it); a file's beside it.
+  std::vector<fs::path> candidates;
+  if (fs::is_directory(log, ec)) candidates.push_back(log / "calibration.yaml");
+  candidates.push_back(log.parent_path() / "calibration.yaml");
+  for (const fs::path& candidate : candidates)
+    if (fs::is_regular_file(candidate, ec)) return candidate.string();
+  return std::string();
 }
 
 std::string resolveOutDir(const RunRequest& request) {

@@ -58,8 +58,8 @@ class CloudCompareHome {
   }
   /// `env` with the private HOME, XDG_DATA_HOME and XDG_CONFIG_HOME.
   std::string env(const std::string& env_options = "") const {
-    return "env " + env_options + " " STOREY_CLOUDCOMPARE_ENV " HOME=" +
-           quoted(dir_.path().string()) +
+    return "env " + env_options +
+           " " STOREY_CLOUDCOMPARE_ENV " HOME=" + quoted(dir_.path().string()) +
            " XDG_DATA_HOME=" + quoted((dir_.path() / "xdg").string()) +
            " XDG_CONFIG_HOME=" + quoted((dir_.path() / "config").string());
   }
@@ -183,6 +183,27 @@ TEST(PluginCommandLine, MapsTheTinyLogAndHandsTheCloudsToCloudCompare) {
   }
   EXPECT_GE(storeys, 1) << "the tiny building has one storey";
   EXPECT_EQ(in_storeys, labelled);
+}
+
+// A rosbag2 folder (MCAP storage), its calibration beside it as `storey
+// simulate --ros2` writes it: read by content, mapped, handed to CloudCompare.
+TEST(PluginCommandLine, MapsARos2BagFolder) {
+  const std::string log = std::string(STOREY_TINY_ROS2_DIR) + "/simulation_ros2";
+  ASSERT_TRUE(fs::is_directory(log)) << log << " (fixture plugin_simulate_tiny_ros2)";
+  CloudCompareHome home;
+  const std::string out = home.file("out");
+  const Result r = home.run("-AUTO_SAVE OFF -NO_TIMESTAMP -STOREY_SLAM " + quoted(log) +
+                            " -STOREY_CONFIG " + quoted(smallFloorConfig(home)) + " -STOREY_OUT " +
+                            quoted(out) + " -C_EXPORT_FMT PLY -PLY_EXPORT_FMT ASCII -SAVE_CLOUDS");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("[Storey] done in"), std::string::npos) << r.output;
+  ASSERT_TRUE(fs::exists(out + "/map.ply")) << r.output;
+  EXPECT_GT(readPly(out + "/map.ply", false).declared, 5000u);
+  // 8 s of a 10 Hz LiDAR, every scan registered.
+  std::ifstream trajectory(out + "/trajectory.tum");
+  int poses = 0;
+  for (std::string line; std::getline(trajectory, line);) poses += !line.empty() && line[0] != '#';
+  EXPECT_GE(poses, 70) << r.output;
 }
 
 TEST(PluginCommandLine, MissingLogFailsCleanly) {

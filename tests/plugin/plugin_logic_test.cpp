@@ -6,6 +6,8 @@
 // Expected values are worked out by hand from the fixtures below.
 #include <gtest/gtest.h>
 
+#include <filesystem>
+
 #include "PlanePatch.h"
 #include "StoreyRun.h"
 #include "common/error.h"
@@ -102,6 +104,20 @@ TEST(PluginRun, CalibrationBesideTheLogAndDefaultOutputFolder) {
   EXPECT_EQ(resolveOutDir(r), dir.file("walk_storey"));
   r.out_dir = "/tmp/o";
   EXPECT_EQ(resolveOutDir(r), "/tmp/o");
+}
+
+TEST(PluginRun, AFoldersCalibrationInsideOrBesideIt) {
+  test::TempDir dir;
+  std::filesystem::create_directories(dir.file("walk_ros2"));
+  RunRequest r;
+  r.log_path = dir.file("walk_ros2");
+  EXPECT_EQ(resolveCalibration(r), "");
+  const std::string beside = dir.write("calibration.yaml", "x");  // storey simulate --ros2
+  EXPECT_EQ(resolveCalibration(r), beside);
+  r.log_path += "/";
+  EXPECT_EQ(resolveCalibration(r), beside);
+  const std::string inside = dir.write("walk_ros2/calibration.yaml", "x");  // a PCD folder's
+  EXPECT_EQ(resolveCalibration(r), inside);
 }
 
 TEST(PluginRun, MissingLogIsAnErrorNamingIt) {
