@@ -128,13 +128,20 @@ Ply readPly(const std::string& path, bool read_rows) {
   return ply;
 }
 
+/// `CloudCompare -STOREY_SLAM LOG` into `out` with the small-floor config,
+/// every cloud saved as ASCII PLY.
+Result mapWithCloudCompare(const CloudCompareHome& home, const std::string& log,
+                           const std::string& out) {
+  return home.run("-AUTO_SAVE OFF -NO_TIMESTAMP -STOREY_SLAM " + quoted(log) + " -STOREY_CONFIG " +
+                  quoted(smallFloorConfig(home)) + " -STOREY_OUT " + quoted(out) +
+                  " -C_EXPORT_FMT PLY -PLY_EXPORT_FMT ASCII -SAVE_CLOUDS");
+}
+
 TEST(PluginCommandLine, MapsTheTinyLogAndHandsTheCloudsToCloudCompare) {
   ASSERT_TRUE(fs::exists(kLog)) << kLog << " (fixture plugin_simulate_tiny)";
   CloudCompareHome home;
   const std::string out = home.file("out");
-  const Result r = home.run("-AUTO_SAVE OFF -NO_TIMESTAMP -STOREY_SLAM " + quoted(kLog) +
-                            " -STOREY_CONFIG " + quoted(smallFloorConfig(home)) + " -STOREY_OUT " +
-                            quoted(out) + " -C_EXPORT_FMT PLY -PLY_EXPORT_FMT ASCII -SAVE_CLOUDS");
+  const Result r = mapWithCloudCompare(home, kLog, out);
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("[Storey] done in"), std::string::npos) << r.output;
 
@@ -192,9 +199,7 @@ TEST(PluginCommandLine, MapsARos2BagFolder) {
   ASSERT_TRUE(fs::is_directory(log)) << log << " (fixture plugin_simulate_tiny_ros2)";
   CloudCompareHome home;
   const std::string out = home.file("out");
-  const Result r = home.run("-AUTO_SAVE OFF -NO_TIMESTAMP -STOREY_SLAM " + quoted(log) +
-                            " -STOREY_CONFIG " + quoted(smallFloorConfig(home)) + " -STOREY_OUT " +
-                            quoted(out) + " -C_EXPORT_FMT PLY -PLY_EXPORT_FMT ASCII -SAVE_CLOUDS");
+  const Result r = mapWithCloudCompare(home, log, out);
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("[Storey] done in"), std::string::npos) << r.output;
   ASSERT_TRUE(fs::exists(out + "/map.ply")) << r.output;
