@@ -132,6 +132,11 @@ class StagingDir {
     if (!fs::is_directory(target_, ec))
       throw Error(target_.string() + ": exists and is not a folder");
     for (const auto& entry : fs::directory_iterator(path_)) {
+      // A folder (the ROS 2 bag's) replaces the one of an earlier simulation:
+      // rename() moves a file over a file, not a folder over a non-empty one.
+      const fs::path destination = target_ / entry.path().filename();
+      if (entry.is_directory() && fs::is_directory(destination, ec))
+        fs::remove_all(destination, ec);
       fs::rename(entry.path(), target_ / entry.path().filename(), ec);
       if (ec)
         throw Error((target_ / entry.path().filename()).string() +

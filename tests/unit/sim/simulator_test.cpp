@@ -233,6 +233,27 @@ TEST(SimOutput, StartAtLeavesOutTheLogBeforeIt) {
   EXPECT_THROW(simulate(spec, options, scratch("cut_all").string()), Error);
 }
 
+// Simulating again into the same folder replaces its files, the ROS 2 bag's
+// folder too (it was "cannot move into place: Directory not empty").
+TEST(SimOutput, ASecondSimulationReplacesTheFirstsFiles) {
+  const BuildingSpec spec = loadBuildingSpec("tiny");
+  const fs::path out = scratch("again");
+  SimulationOptions options = shortRun();
+  options.max_duration = 1.0;
+  options.formats.ros2 = Ros2Format::kDb3;
+  simulate(spec, options, out.string());
+  options.max_duration = 2.0;
+  const SimulationResult second = simulate(spec, options, out.string());
+  EXPECT_EQ(second.scans, 20);
+  EXPECT_EQ(countLines(out / kLidarTruthFile), 20);
+  std::size_t bag_files = 0;
+  for (const auto& entry : fs::directory_iterator(out / kRos2BagDir)) {
+    (void)entry;
+    ++bag_files;
+  }
+  EXPECT_EQ(bag_files, 2u) << "metadata.yaml and one .db3";
+}
+
 TEST(SimOutput, CancelLeavesNoOutput) {
   const fs::path out = scratch("cancel");
   int calls = 0;
