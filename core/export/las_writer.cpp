@@ -54,12 +54,15 @@ void writeLas(const std::string& path, const MapCloud& cloud,
   // quantised coordinates, so they agree exactly with the records.
   Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
   Eigen::Vector3d hi = -lo;
+  double earliest = 0.0;  // point time, for the header's creation day (below)
   for (std::size_t k = 0; k < n; ++k) {
     const Eigen::Vector3d p = cloud.positions[selection.at(k)].cast<double>();
     if (!p.allFinite())
       throw Error(path + ": map point " + std::to_string(selection.at(k)) + " is not finite");
     lo = lo.cwiseMin(p);
     hi = hi.cwiseMax(p);
+    const double t = cloud.time[selection.at(k)];
+    if (k == 0 || t < earliest) earliest = t;
   }
   if (n == 0) lo = hi = Eigen::Vector3d::Zero();
   const Eigen::Vector3d offset(std::floor(lo.x()), std::floor(lo.y()), std::floor(lo.z()));
@@ -89,11 +92,6 @@ void writeLas(const std::string& path, const MapCloud& cloud,
   // the earliest point time: a log's clock is Unix time), so the same log
   // gives the same file on any day; a clock that is no date (before 1980,
   // e.g. time since the sensor booted) leaves the day and year 0.
-  double earliest = 0.0;
-  for (std::size_t k = 0; k < n; ++k) {
-    const double t = cloud.time[selection.at(k)];
-    if (k == 0 || t < earliest) earliest = t;
-  }
   std::tm utc{};
   const bool dated = earliest >= 315532800.0 && earliest < 4102444800.0;  // 1980 .. 2100
   if (dated) {

@@ -146,8 +146,9 @@ void selectFeatures(const Scan& scan, const FeatureConfig& config, const Ring& r
   for (int s = 0; s < sectors; ++s) {
     const std::size_t begin = eligible.size() * s / sectors;
     const std::size_t end = eligible.size() * (s + 1) / sectors;
-    // Smoothest last, ties by position: one integer sort on (smoothness, index)
-    // keys (a smoothness is >= 0, so its float bits order as it does).
+    // Largest smoothness (sharpest) first, ties by position: one integer sort
+    // on (inverted smoothness bits, index) keys (a smoothness is >= 0, so its
+    // float bits order as it does).
     keys.clear();
     for (std::size_t e = begin; e < end; ++e) {
       const int i = eligible[e];

@@ -137,10 +137,8 @@ class StagingDir {
       const fs::path destination = target_ / entry.path().filename();
       if (entry.is_directory() && fs::is_directory(destination, ec))
         fs::remove_all(destination, ec);
-      fs::rename(entry.path(), target_ / entry.path().filename(), ec);
-      if (ec)
-        throw Error((target_ / entry.path().filename()).string() +
-                    ": cannot move into place: " + ec.message());
+      fs::rename(entry.path(), destination, ec);
+      if (ec) throw Error(destination.string() + ": cannot move into place: " + ec.message());
     }
     fs::remove_all(path_, ec);
     committed_ = true;
@@ -362,14 +360,22 @@ SimulationResult simulate(const BuildingSpec& spec, const SimulationOptions& opt
   std::ostringstream lidar_truth;
   lidar_truth
       << "# timestamp x y z qx qy qz qw (LiDAR frame in the world frame, at each scan's stamp)\n";
+  // The LiDAR's true pose at an absolute stamp, as a TUM line.
+  auto writeLidarTruth = [&](std::ostream& out, std::int64_t stamp_ns) {
+    writeTumLine(
+        out, stamp_ns,
+        trajectory.frame((stamp_ns - start_ns) * 1e-9, sensors.T_body_lidar).T_world_frame);
+  };
+  // A scan of the log: its truth and its counts.
+  auto countScan = [&](const Scan& scan) {
+    writeLidarTruth(lidar_truth, scan.stamp_ns);
+    ++result.scans;
+    result.points += static_cast<std::int64_t>(scan.points.size());
+  };
   // One point cloud into the bags, with the LiDAR faults of its time
   // (`organised`: the Ouster layout's scan, else the Velodyne layout's).
   auto writeCloud = [&](Scan& scan, std::int64_t record_ns, const OrganisedScan* organised_scan) {
-    writeTumLine(
-        lidar_truth, scan.stamp_ns,
-        trajectory.frame((scan.stamp_ns - start_ns) * 1e-9, sensors.T_body_lidar).T_world_frame);
-    ++result.scans;
-    result.points += static_cast<std::int64_t>(scan.points.size());
+    countScan(scan);
     const double scan_time = (scan.stamp_ns - start_ns) * 1e-9;
     if (lidar_gaps && inLidarGap(options.faults, scan_time)) return;
     if (occlusions && inOcclusion(options.faults, scan_time)) {
@@ -404,6 +410,12 @@ SimulationResult simulate(const BuildingSpec& spec, const SimulationOptions& opt
   std::vector<Scan> driver_clouds;
   std::map<std::string, std::int64_t> driver_dropped;
   std::int64_t last_message_ns = 0;
+  auto writeDriverClouds = [&](std::int64_t record_ns) {
+    for (Scan& cloud : driver_clouds) {
+      cloud.frame_id = sensors.lidar_frame_id;
+      writeCloud(cloud, record_ns, nullptr);
+    }
+  };
   auto writeVelodyneMessages = [&]() {
     for (const VelodyneScanMessage& message : velodyne_messages) {
       writeImuUntil(message.stamp_ns - start_ns);
@@ -414,10 +426,7 @@ SimulationResult simulate(const BuildingSpec& spec, const SimulationOptions& opt
       }
       driver_clouds.clear();
       velodyne_driver->add(message, driver_clouds, driver_dropped);
-      for (Scan& cloud : driver_clouds) {
-        cloud.frame_id = sensors.lidar_frame_id;
-        writeCloud(cloud, message.stamp_ns, nullptr);
-      }
+      writeDriverClouds(message.stamp_ns);
     }
     velodyne_messages.clear();
   };
@@ -465,11 +474,7 @@ SimulationResult simulate(const BuildingSpec& spec, const SimulationOptions& opt
       if (organised && bag) {
         writeCloud(scan, start_ns + receipt_ns, &cast.organised[i]);
       } else if (!velodyne_driver) {  // packets or a capture: the truth at the scans' stamps
-        writeTumLine(lidar_truth, scan.stamp_ns,
-                     trajectory.frame((scan.stamp_ns - start_ns) * 1e-9, sensors.T_body_lidar)
-                         .T_world_frame);
-        ++result.scans;
-        result.points += static_cast<std::int64_t>(scan.points.size());
+        countScan(scan);
       }
       if (pcap) {
         for (const VelodyneFiring& firing : cast.firings[i]) pcap->add(firing);
@@ -488,10 +493,7 @@ SimulationResult simulate(const BuildingSpec& spec, const SimulationOptions& opt
       driver_clouds.clear();
       velodyne_driver->flush(driver_clouds);
       // The last frame, recorded with the last message (its packet completed by no-returns).
-      for (Scan& cloud : driver_clouds) {
-        cloud.frame_id = sensors.lidar_frame_id;
-        writeCloud(cloud, last_message_ns, nullptr);
-      }
+      writeDriverClouds(last_message_ns);
     }
   }
   writeImuUntil(INT64_MAX / 2);
@@ -514,11 +516,7 @@ SimulationResult simulate(const BuildingSpec& spec, const SimulationOptions& opt
       out << "# timestamp x y z qx qy qz qw (LiDAR frame in the world frame, at the stamp of each "
              "frame of "
           << kPcapFile << ")\n";
-      for (const std::int64_t t_ns : frame_starts) {
-        writeTumLine(
-            out, t_ns,
-            trajectory.frame((t_ns - start_ns) * 1e-9, sensors.T_body_lidar).T_world_frame);
-      }
+      for (const std::int64_t t_ns : frame_starts) writeLidarTruth(out, t_ns);
     });
   }
   writeFileAtomically(staging.file(kLidarTruthFile), lidar_truth.str());
