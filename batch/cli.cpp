@@ -60,7 +60,9 @@ int main(int argc, char** argv) {
                     "no PNG renders at the end (render them later with `storey render OUT`)");
   run_cmd
       ->add_option("--threads", run.threads,
-                   "threads: 1 = all on one thread (no read-ahead of the log); 0 = all cores. The "
+                   "threads: 1 = all on one thread (no read-ahead of the log, the back end on the "
+                   "odometry's "
+                   "thread); 0 = all cores. The "
                    "outputs are the same bytes either way")
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);

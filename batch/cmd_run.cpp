@@ -30,7 +30,10 @@ int runStoppable(const RunOptions& options) {
   Config config = configFromOptions(options.common);
   if (options.no_srp) config.backend.srp = false;
   if (options.no_render) config.render.enabled = false;
-  if (options.threads == 1) config.input.read_ahead_scans = 0;
+  if (options.threads == 1) {
+    config.input.read_ahead_scans = 0;
+    config.backend.queue_scans = 0;
+  }
   std::string log_path = options.log_path;
   std::string ground_truth;  // the simulator's, when the built-in building is mapped
   if (log_path.empty()) {

@@ -11,6 +11,7 @@ void BackendConfig::validate() const {
   auto require = [](bool ok, const char* key, const char* what) {
     if (!ok) throw Error(std::string("backend.") + key + ": " + what);
   };
+  require(c.queue_scans >= 0 && c.queue_scans <= 64, "queue_scans", "must be in [0, 64]");
   require(c.keyframes.distance > 0, "keyframes.distance", "must be positive");
   require(c.keyframes.pitch_roll_deg > 0, "keyframes.pitch_roll_deg", "must be positive");
   require(c.keyframes.max_interval >= 0, "keyframes.max_interval", "must be >= 0");

@@ -87,6 +87,10 @@ struct GraphConfig {
 /// The back end (SRP constraints, keyframe graph).
 struct BackendConfig {
   bool srp = true;  ///< SRP back end on; off (`--no-srp`): trajectory = odometry
+  /// Scans queued between the odometry and the back end, which then runs on
+  /// a thread of its own (with the map scan selection); 0: on the odometry's
+  /// thread. The results are the same bytes either way [0, 64].
+  int queue_scans = 4;
   KeyframeConfig keyframes;
   SrpExtractionConfig extraction;
   AssociationConfig association;

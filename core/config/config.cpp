@@ -99,6 +99,7 @@ void visitOdometry(V& v, OdometryConfig& c) {
 template <typename V>
 void visitBackend(V& v, BackendConfig& c) {
   v.field("srp", c.srp);
+  v.field("queue_scans", c.queue_scans);
   v.section("keyframes", [&](auto& k) {
     k.field("distance", c.keyframes.distance);
     k.field("pitch_roll_deg", c.keyframes.pitch_roll_deg);

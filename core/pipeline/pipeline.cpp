@@ -39,7 +39,8 @@ PipelineResult runPipeline(const std::string& log_path, const Config& config,
   ScanTimings timings;
 
   // Odometry per scan, back end per keyframe, map scans chosen: one pass.
-  streamLog(log_path, *reader, *odometry, *backend, map_scans, report, timings, progress, log_time);
+  streamLog(log_path, *reader, *odometry, *backend, map_scans, report, timings,
+            config.backend.queue_scans, progress, log_time);
   if (progress && !progress(1.0, "back end: final optimisation")) throw Cancelled();
   SlamResult slam = backend->finish();
   report.setInput(log_path, reader->stats(), odometry->drops());

@@ -1,8 +1,10 @@
 #include "pipeline/stream_log.h"
 
+#include <algorithm>
 #include <optional>
 
 #include "common/error.h"
+#include "common/ordered_worker.h"
 #include "common/stopwatch.h"
 
 namespace storey {
@@ -25,12 +27,19 @@ void passOn(OdometryResult& scan, Backend& backend, MapScanSelector& map_scans,
 
 void streamLog(const std::string& log_path, LogReader& reader, LidarInertialOdometry& odometry,
                Backend& backend, MapScanSelector& map_scans, RunReportBuilder& report,
-               ScanTimings& timings, const ProgressFn& progress, const LogTimeFn& log_time) {
+               ScanTimings& timings, int queue_scans, const ProgressFn& progress,
+               const LogTimeFn& log_time) {
+  // The back end and the map scan selection on a thread of their own: only
+  // the odometry's results go to it, nothing comes back.
+  OrderedWorker<OdometryResult> backend_thread(
+      static_cast<std::size_t>(std::max(queue_scans, 0)),
+      [&](OdometryResult& scan) { passOn(scan, backend, map_scans, report, timings); });
   std::size_t scans = 0;
   OdometryResult result;
   auto drain = [&] {
     while (odometry.nextResult(result)) {
-      passOn(result, backend, map_scans, report, timings);
+      backend_thread.push(std::move(result));
+      result = OdometryResult();
       ++scans;
     }
   };
@@ -56,6 +65,7 @@ void streamLog(const std::string& log_path, LogReader& reader, LidarInertialOdom
   }
   odometry.finish();
   drain();
+  backend_thread.finish();
   if (scans == 0) {
     throw Error(log_path + ": no scan could be processed (" + std::to_string(reader.stats().scans) +
                 " scans read)");
