@@ -166,6 +166,7 @@ void visitMap(V& v, MapConfig& c) {
   v.field("voxel_size", c.voxel_size);
   v.field("max_range", c.max_range);
   v.field("spill_to_disk", c.spill_to_disk);
+  v.field("export_threads", c.export_threads);
 }
 
 template <typename V>

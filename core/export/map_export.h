@@ -18,9 +18,10 @@ namespace storey {
 
 /// Writes the files listed above for a built and labelled map; stale
 /// storeys/storey_NN.* files of a previous run with more storeys are removed.
-/// Returns the written files (relative to out_dir).
+/// Returns the written files (relative to out_dir). The files are written by
+/// up to `threads` threads at once (each file by one; the same bytes).
 std::vector<std::string> writeMapFiles(const std::string& out_dir, const MapCloud& map,
                                        const StoreySegmentation& storeys, double map_voxel_size,
-                                       const ProgressFn& progress = {});
+                                       const ProgressFn& progress = {}, int threads = 1);
 
 }  // namespace storey

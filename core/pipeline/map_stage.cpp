@@ -21,6 +21,7 @@ MapStage buildMapStage(MapScanSelector& map_scans, const SlamResult& slam,
   stage.seconds_build = watch.seconds();
   stage.build = builder.stats();
   stage.voxel_size = builder.config().voxel_size;
+  const int export_threads = builder.config().export_threads;
   logInfo("map: " + std::to_string(map.size()) + " points from " +
           std::to_string(stage.build.scans) + " scans");
   map_scans.release();  // the stored scans are no longer needed
@@ -47,7 +48,8 @@ MapStage buildMapStage(MapScanSelector& map_scans, const SlamResult& slam,
   }
 
   watch = Stopwatch();
-  stage.files = writeMapFiles(out_dir, map, stage.storeys, stage.voxel_size, progress);
+  stage.files =
+      writeMapFiles(out_dir, map, stage.storeys, stage.voxel_size, progress, export_threads);
   stage.seconds_export = watch.seconds();
   stage.map = std::make_shared<const MapCloud>(std::move(map));
   return stage;
