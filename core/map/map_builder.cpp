@@ -177,32 +177,60 @@ MapCloud MapBuilder::build(const std::vector<Pose>& T_world_lidar_per_scan,
   // Grown with the map (not sized by the points stored, which grow with the log).
   VoxelIndex index(std::size_t{1} << 20);
   std::vector<StoredPoint> points;
+  // Points go through in batches: their voxels' slots are prefetched first,
+  // then looked up in order, then the found voxels' sums (prefetched by the
+  // lookup) are added to in order. Each voxel sees the same additions in the
+  // same order as one point at a time, so the cloud is the same.
+  constexpr std::size_t kBatch = 32;
+  struct Pending {
+    std::uint64_t key;
+    Eigen::Vector3f local;
+    float intensity;
+    float dt;
+    std::uint32_t voxel;
+    bool inserted;
+  };
+  Pending batch[kBatch];
   for (std::size_t e = 0; e < entries_.size(); ++e) {
     const Entry& entry = entries_[e];
     readPoints(entry, points);
     const Pose& T = T_world_lidar_per_scan[static_cast<std::size_t>(entry.map_scan)];
     const Eigen::Matrix3d R = T.rotationMatrix();
     const Eigen::Vector3d t = T.translation();
-    for (const StoredPoint& sp : points) {
-      const Eigen::Vector3d p = R * Eigen::Vector3d(sp.x, sp.y, sp.z) + t;
-      const Eigen::Vector3d cell(std::floor(p.x() * inv), std::floor(p.y() * inv),
-                                 std::floor(p.z() * inv));
-      const std::uint64_t key =
-          packVoxel(static_cast<std::int64_t>(cell.x()), static_cast<std::int64_t>(cell.y()),
-                    static_cast<std::int64_t>(cell.z()));
-      const Eigen::Vector3f local = (p - cell * config_.voxel_size).cast<float>();
-      bool inserted = false;
-      const std::uint32_t v = index.findOrInsert(key, inserted);
-      if (inserted) {
-        acc.push_back({local.x(), local.y(), local.z(), sp.intensity, 1,
-                       static_cast<std::uint32_t>(e), sp.dt});
-        keys.push_back(key);
-      } else {
-        Acc& a = acc[v];
-        a.sx += local.x();
-        a.sy += local.y();
-        a.sz += local.z();
-        a.si += sp.intensity;
+    for (std::size_t begin = 0; begin < points.size(); begin += kBatch) {
+      const std::size_t count = std::min(kBatch, points.size() - begin);
+      for (std::size_t b = 0; b < count; ++b) {
+        const StoredPoint& sp = points[begin + b];
+        const Eigen::Vector3d p = R * Eigen::Vector3d(sp.x, sp.y, sp.z) + t;
+        const Eigen::Vector3d cell(std::floor(p.x() * inv), std::floor(p.y() * inv),
+                                   std::floor(p.z() * inv));
+        Pending& q = batch[b];
+        q.key = packVoxel(static_cast<std::int64_t>(cell.x()), static_cast<std::int64_t>(cell.y()),
+                          static_cast<std::int64_t>(cell.z()));
+        q.local = (p - cell * config_.voxel_size).cast<float>();
+        q.intensity = sp.intensity;
+        q.dt = sp.dt;
+        index.prefetch(q.key);
+      }
+      for (std::size_t b = 0; b < count; ++b) {
+        Pending& q = batch[b];
+        q.voxel = index.findOrInsert(q.key, q.inserted);
+        if (q.inserted) {
+          acc.push_back({q.local.x(), q.local.y(), q.local.z(), q.intensity, 1,
+                         static_cast<std::uint32_t>(e), q.dt});
+          keys.push_back(q.key);
+        } else {
+          __builtin_prefetch(&acc[q.voxel], 1);
+        }
+      }
+      for (std::size_t b = 0; b < count; ++b) {
+        const Pending& q = batch[b];
+        if (q.inserted) continue;
+        Acc& a = acc[q.voxel];
+        a.sx += q.local.x();
+        a.sy += q.local.y();
+        a.sz += q.local.z();
+        a.si += q.intensity;
         ++a.n;
       }
     }

@@ -2,6 +2,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <map>
+#include <tuple>
 
 #include "common/error.h"
 #include "map/map_builder.h"
@@ -121,6 +123,63 @@ TEST_P(MapBuilderTest, DenseSurfaceIsReducedToOnePointPerVoxel) {
   EXPECT_GE(map.size(), 50u * 50u);
   EXPECT_LE(map.size(), 51u * 51u * 2u);  // the plane x = 3 may straddle a voxel face
   for (const Eigen::Vector3f& p : map.positions) EXPECT_NEAR(p.x(), 3.0, 1e-4);
+}
+
+TEST_P(MapBuilderTest, EveryVoxelGetsItsPointsInOrderWhateverTheirNumber) {
+  // Points at LiDAR voxel centres (kept as they are by the per-scan step),
+  // scans turned 45 deg and shifted so that several points of one scan, near
+  // each other in its order, share a world voxel; thousands of points per scan.
+  // Reference: each point's voxel summed one point at a time, voxels in the
+  // order first seen.
+  MapConfig config;
+  config.voxel_size = 0.02;
+  config.spill_to_disk = GetParam();
+  MapBuilder builder(config);
+  std::vector<Pose> poses;
+  std::vector<std::vector<ScanPoint>> scans;
+  for (int s = 0; s < 3; ++s) {
+    std::vector<ScanPoint> points;
+    for (int i = 0; i < 60; ++i)
+      for (int j = 0; j < 60; ++j)
+        points.push_back(point(0.01f + 0.02f * static_cast<float>(i),
+                               0.01f + 0.02f * static_cast<float>(j), 0.01f,
+                               static_cast<float>((i * 7 + j * 3 + s) % 50), 0.0f));
+    builder.addScan(s, makeScan(s, points));
+    scans.push_back(points);
+    poses.emplace_back(
+        Eigen::Quaterniond(Eigen::AngleAxisd(0.785398 * (s + 1), Eigen::Vector3d::UnitZ())),
+        Eigen::Vector3d(0.003 * s, 0.007 * s, 0.0));
+  }
+  ASSERT_EQ(builder.stats().points_stored, 3 * 60 * 60);
+  struct Voxel {
+    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+    double intensity = 0.0;
+    int n = 0;
+  };
+  std::vector<std::tuple<std::int64_t, std::int64_t, std::int64_t>> order;
+  std::map<std::tuple<std::int64_t, std::int64_t, std::int64_t>, Voxel> voxels;
+  int shared = 0;
+  for (std::size_t s = 0; s < scans.size(); ++s)
+    for (const ScanPoint& sp : scans[s]) {
+      const Eigen::Vector3d p = poses[s] * sp.p.cast<double>();
+      const auto key = std::make_tuple(static_cast<std::int64_t>(std::floor(p.x() / 0.02)),
+                                       static_cast<std::int64_t>(std::floor(p.y() / 0.02)),
+                                       static_cast<std::int64_t>(std::floor(p.z() / 0.02)));
+      Voxel& v = voxels[key];
+      if (v.n == 0) order.push_back(key);
+      shared += v.n > 0 ? 1 : 0;
+      v.sum += p;
+      v.intensity += sp.intensity;
+      ++v.n;
+    }
+  ASSERT_GT(shared, 1000) << "fixture: points must share voxels";
+  const MapCloud map = builder.build(poses);
+  ASSERT_EQ(map.size(), order.size());
+  for (std::size_t i = 0; i < order.size(); ++i) {
+    const Voxel& v = voxels[order[i]];
+    ASSERT_NEAR((map.positions[i].cast<double>() - v.sum / v.n).norm(), 0.0, 2e-5) << "voxel " << i;
+    ASSERT_NEAR(map.intensity[i], v.intensity / v.n, 1e-3) << "voxel " << i;
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(Storage, MapBuilderTest, ::testing::Values(true, false),
