@@ -8,7 +8,11 @@
 #include <CGAL/pca_estimate_normals.h>
 #include <CGAL/property_map.h>
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include <Eigen/Eigenvalues>
+#include <cstdint>
 #include <iterator>
 #include <utility>
 
@@ -38,6 +42,40 @@ PointRange toRange(const std::vector<Eigen::Vector3d>& points,
   }
   return range;
 }
+
+/// The k nearest neighbours of every point, found once (in parallel; each
+/// point's list is CGAL's K_neighbor_query's, in its order) and handed out
+/// as often as asked: the seed sorting and the region growing both ask for
+/// every point's.
+class CachedNeighborQuery {
+ public:
+  template <typename Query>
+  CachedNeighborQuery(const Query& query, std::size_t points, std::size_t k)
+      : k_(k), count_(points, 0), neighbours_(points * k) {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, points, 256),
+                      [&](const tbb::blocked_range<std::size_t>& range) {
+                        std::vector<std::size_t> found;
+                        for (std::size_t i = range.begin(); i != range.end(); ++i) {
+                          query(i, found);
+                          const std::size_t n = std::min(found.size(), k_);
+                          for (std::size_t j = 0; j < n; ++j)
+                            neighbours_[i * k_ + j] = static_cast<std::uint32_t>(found[j]);
+                          count_[i] = static_cast<std::uint32_t>(n);
+                        }
+                      });
+  }
+
+  void operator()(std::size_t query_index, std::vector<std::size_t>& neighbors) const {
+    neighbors.assign(
+        neighbours_.begin() + static_cast<std::ptrdiff_t>(query_index * k_),
+        neighbours_.begin() + static_cast<std::ptrdiff_t>(query_index * k_ + count_[query_index]));
+  }
+
+ private:
+  std::size_t k_;
+  std::vector<std::uint32_t> count_;
+  std::vector<std::uint32_t> neighbours_;
+};
 
 }  // namespace
 
@@ -71,15 +109,18 @@ std::vector<PlanarRegion> detectPlanarRegions(const std::vector<Eigen::Vector3d>
   std::vector<PlanarRegion> out;
   if (points.size() < 3) return out;
   namespace SD = CGAL::Shape_detection;
-  using NeighborQuery = SD::Point_set::K_neighbor_query<Kernel, PointRange, PointMap>;
-  using RegionType = SD::Point_set::Least_squares_plane_fit_region<Kernel, PointRange, PointMap, NormalMap>;
-  using Sorting = SD::Point_set::Least_squares_plane_fit_sorting<Kernel, PointRange, NeighborQuery, PointMap>;
-  using RegionGrowing = SD::Region_growing<PointRange, NeighborQuery, RegionType, Sorting::Seed_map>;
+  using KdTreeQuery = SD::Point_set::K_neighbor_query<Kernel, PointRange, PointMap>;
+  using RegionType =
+      SD::Point_set::Least_squares_plane_fit_region<Kernel, PointRange, PointMap, NormalMap>;
+  using Sorting = SD::Point_set::Least_squares_plane_fit_sorting<Kernel, PointRange,
+                                                                 CachedNeighborQuery, PointMap>;
+  using RegionGrowing =
+      SD::Region_growing<PointRange, CachedNeighborQuery, RegionType, Sorting::Seed_map>;
 
   const PointRange range = toRange(points, &normals);
   const std::size_t k =
       std::min<std::size_t>(static_cast<std::size_t>(neighbours), points.size() - 1);
-  NeighborQuery neighbor_query(range, k, PointMap());
+  CachedNeighborQuery neighbor_query(KdTreeQuery(range, k, PointMap()), range.size(), k);
   RegionType region_type(range, max_distance, max_angle_deg, std::max<std::size_t>(min_points, 3),
                          PointMap(), NormalMap());
   Sorting sorting(range, neighbor_query, PointMap());
