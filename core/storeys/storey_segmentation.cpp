@@ -1,5 +1,7 @@
 #include "storeys/storey_segmentation.h"
 
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -341,14 +343,15 @@ StoreySegmentation segmentStoreys(MapCloud& map,
   // 6. Footprints.
   t0 = std::chrono::steady_clock::now();
   report(0.8, "storeys: footprints");
-  for (std::size_t k = 0; k < n; ++k) {
+  // One storey's alpha shape per thread (each independent of the others).
+  tbb::parallel_for(std::size_t{0}, n, [&](std::size_t k) {
     std::vector<Eigen::Vector2d> xy;
     for (std::size_t c : floor_slabs[floors[k]].members)
       for (std::size_t i : regions[up[c].region].indices) xy.push_back(sub.points[i].head<2>());
     const Footprint footprint = alphaShapeFootprint(xy, config.footprint_alpha);
     result.storeys[k].footprint = footprint.polygon;
     result.storeys[k].footprint_area = footprint.area;
-  }
+  });
   stats.seconds_footprints = secondsSince(t0);
   report(1.0, "storeys");
   return result;
