@@ -7,7 +7,66 @@
 namespace storey {
 
 VoxelMap::VoxelMap(const VoxelMapConfig& config)
-    : config_(config), inverse_size_(static_cast<float>(1.0 / config.voxel_size)) {}
+    : config_(config),
+      inverse_size_(static_cast<float>(1.0 / config.voxel_size)),
+      capacity_(static_cast<std::size_t>(std::max(config.max_points_per_voxel, 1))) {
+  rebuildIndex(1024);
+}
+
+namespace {
+std::size_t slotOfKey(std::uint64_t key, std::size_t mask) {
+  std::uint64_t h = key * 0x9E3779B97F4A7C15ull;
+  h ^= h >> 29;
+  return static_cast<std::size_t>(h) & mask;
+}
+}  // namespace
+
+const VoxelMap::Slot* VoxelMap::findSlot(Key key) const {
+  const std::size_t mask = slots_.size() - 1;
+  for (std::size_t i = slotOfKey(key, mask);; i = (i + 1) & mask) {
+    const Slot& slot = slots_[i];
+    if (slot.key == key) return &slot;
+    if (slot.key == kEmptyKey) return nullptr;
+  }
+}
+
+VoxelMap::Slot& VoxelMap::findOrAddSlot(Key key) {
+  if (2 * (voxel_count_ + 1) > slots_.size()) rebuildIndex(2 * slots_.size());
+  const std::size_t mask = slots_.size() - 1;
+  std::size_t i = slotOfKey(key, mask);
+  for (; slots_[i].key != kEmptyKey; i = (i + 1) & mask)
+    if (slots_[i].key == key) return slots_[i];
+  std::uint32_t block = 0;
+  if (!free_blocks_.empty()) {
+    block = free_blocks_.back();
+    free_blocks_.pop_back();
+    block_keys_[block] = key;
+  } else {
+    block = static_cast<std::uint32_t>(block_keys_.size());
+    block_keys_.push_back(key);
+    points_.resize(points_.size() + capacity_);
+  }
+  ++voxel_count_;
+  slots_[i] = {key, block, 0};
+  return slots_[i];
+}
+
+void VoxelMap::rebuildIndex(std::size_t slots) {
+  // The counts live in the slots: carry them over.
+  std::vector<std::uint32_t> counts(block_keys_.size(), 0);
+  for (const Slot& slot : slots_)
+    if (slot.key != kEmptyKey) counts[slot.block] = slot.count;
+  std::size_t size = 16;
+  while (size < slots || size < 2 * voxel_count_) size *= 2;
+  slots_.assign(size, Slot{kEmptyKey, 0, 0});
+  const std::size_t mask = size - 1;
+  for (std::size_t b = 0; b < block_keys_.size(); ++b) {
+    if (block_keys_[b] == kEmptyKey) continue;
+    std::size_t i = slotOfKey(block_keys_[b], mask);
+    while (slots_[i].key != kEmptyKey) i = (i + 1) & mask;
+    slots_[i] = {block_keys_[b], static_cast<std::uint32_t>(b), counts[b]};
+  }
+}
 
 Eigen::Vector3i VoxelMap::cellOf(const Eigen::Vector3f& p) const {
   return Eigen::Vector3i(static_cast<int>(std::floor(p.x() * inverse_size_)),
@@ -31,15 +90,14 @@ void VoxelMap::insertPoint(const Eigen::Vector3f& p, const Eigen::Vector3f& view
   if (!p.allFinite()) return;
   const float min_spacing_squared =
       static_cast<float>(config_.min_point_spacing * config_.min_point_spacing);
-  const std::size_t capacity = static_cast<std::size_t>(std::max(config_.max_points_per_voxel, 1));
-  std::vector<MapPoint>& voxel = voxels_[keyOf(p)];
-  if (voxel.size() >= capacity) return;
-  const bool too_close = std::any_of(voxel.begin(), voxel.end(), [&](const MapPoint& q) {
+  Slot& slot = findOrAddSlot(keyOf(p));
+  if (slot.count >= capacity_) return;
+  MapPoint* block = &points_[slot.block * capacity_];
+  const bool too_close = std::any_of(block, block + slot.count, [&](const MapPoint& q) {
     return (q.p - p).squaredNorm() < min_spacing_squared;
   });
   if (too_close) return;
-  if (voxel.empty()) voxel.reserve(capacity);
-  voxel.push_back({p, view});
+  block[slot.count++] = {p, view};
   ++point_count_;
 }
 
@@ -59,17 +117,24 @@ void VoxelMap::insert(const std::vector<Eigen::Vector3f>& points_world,
 
 void VoxelMap::removeFar(const Eigen::Vector3d& sensor_world) {
   const double max_squared = config_.max_range * config_.max_range;
-  for (auto it = voxels_.begin(); it != voxels_.end();) {
+  bool removed = false;
+  for (const Slot& slot : slots_) {
+    if (slot.key == kEmptyKey) continue;
     const bool far =
-        !it->second.empty() &&
-        (it->second.front().p.cast<double>() - sensor_world).squaredNorm() > max_squared;
-    if (far || it->second.empty()) {
-      point_count_ -= it->second.size();
-      it = voxels_.erase(it);
-    } else {
-      ++it;
+        slot.count > 0 &&
+        (points_[slot.block * capacity_].p.cast<double>() - sensor_world).squaredNorm() >
+            max_squared;
+    if (far || slot.count == 0) {
+      point_count_ -= slot.count;
+      --voxel_count_;
+      block_keys_[slot.block] = kEmptyKey;
+      free_blocks_.push_back(slot.block);
+      removed = true;
     }
   }
+  // Freed blocks are reused highest first, whatever the slots' order.
+  std::sort(free_blocks_.begin(), free_blocks_.end());
+  if (removed) rebuildIndex(slots_.size());
 }
 
 void VoxelMap::transform(const Pose& T) {
@@ -77,10 +142,20 @@ void VoxelMap::transform(const Pose& T) {
   points.reserve(point_count_);
   const Eigen::Matrix3f R = T.rotationMatrix().cast<float>();
   const Eigen::Vector3f t = T.translation().cast<float>();
-  for (const auto& [key, voxel] : voxels_)
-    for (const MapPoint& m : voxel) points.push_back({R * m.p + t, R * m.view});
-  voxels_.clear();
+  for (const Slot& slot : slots_) {
+    if (slot.key == kEmptyKey) continue;
+    for (std::uint32_t i = 0; i < slot.count; ++i) {
+      const MapPoint& m = points_[slot.block * capacity_ + i];
+      points.push_back({R * m.p + t, R * m.view});
+    }
+  }
+  points_.clear();
+  block_keys_.clear();
+  free_blocks_.clear();
+  voxel_count_ = 0;
   point_count_ = 0;
+  slots_.clear();
+  rebuildIndex(1024);
   for (const MapPoint& m : points) insertPoint(m.p, m.view);
 }
 
@@ -112,9 +187,11 @@ int VoxelMap::nearest(const Eigen::Vector3f& query, int k, float max_distance, E
     const float box_d2 = gap[0][dx + 1] * gap[0][dx + 1] + gap[1][dy + 1] * gap[1][dy + 1] +
                          gap[2][dz + 1] * gap[2][dz + 1];
     if (box_d2 > worst) return;
-    const auto it = voxels_.find(keyOf(c.x() + dx, c.y() + dy, c.z() + dz));
-    if (it == voxels_.end()) return;
-    for (const MapPoint& m : it->second) {
+    const Slot* slot = findSlot(keyOf(c.x() + dx, c.y() + dy, c.z() + dz));
+    if (slot == nullptr) return;
+    const MapPoint* block = &points_[slot->block * capacity_];
+    for (std::uint32_t j = 0; j < slot->count; ++j) {
+      const MapPoint& m = block[j];
       const float d2 = (m.p - query).squaredNorm();
       if (d2 > worst) continue;
       int i = found < k ? found++ : k - 1;

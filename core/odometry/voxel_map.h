@@ -13,7 +13,6 @@
 /// cannot be told from a point on the other (scan_matcher.h).
 #include <Eigen/Core>
 #include <cstdint>
-#include <unordered_map>
 #include <vector>
 
 #include "types/pose.h"
@@ -21,10 +20,10 @@
 namespace storey {
 
 struct VoxelMapConfig {
-  double voxel_size = 0.5;          ///< voxel edge [m]
-  int max_points_per_voxel = 20;    ///< points kept per voxel [>= 1]
-  double min_point_spacing = 0.1;   ///< a new point closer than this to a kept one is skipped [m]
-  double max_range = 60.0;          ///< voxels farther than this from the sensor are dropped [m]
+  double voxel_size = 0.5;         ///< voxel edge [m]
+  int max_points_per_voxel = 20;   ///< points kept per voxel [>= 1]
+  double min_point_spacing = 0.1;  ///< a new point closer than this to a kept one is skipped [m]
+  double max_range = 60.0;         ///< voxels farther than this from the sensor are dropped [m]
 };
 
 class VoxelMap {
@@ -35,14 +34,16 @@ class VoxelMap {
   void insert(const std::vector<Eigen::Vector3f>& points_world);
   /// Adds points (world frame) observed from `sensor_world`: each keeps its
   /// unit direction towards the sensor.
-  void insert(const std::vector<Eigen::Vector3f>& points_world, const Eigen::Vector3d& sensor_world);
+  void insert(const std::vector<Eigen::Vector3f>& points_world,
+              const Eigen::Vector3d& sensor_world);
   /// Drops every voxel whose centre is farther than config.max_range from `sensor_world`.
   void removeFar(const Eigen::Vector3d& sensor_world);
 
   /// Up to k nearest neighbours of `query` within `max_distance` [m], nearest
   /// first. Searches the 27 voxels around the query, so max_distance should
   /// not exceed the voxel size.
-  std::vector<Eigen::Vector3f> nearest(const Eigen::Vector3f& query, int k, float max_distance) const;
+  std::vector<Eigen::Vector3f> nearest(const Eigen::Vector3f& query, int k,
+                                       float max_distance) const;
   /// Same without allocation: writes up to min(k, kMaxNeighbours) points to
   /// `out`, nearest first, and returns how many; with `views_out`, also their
   /// view directions (zero when unknown).
@@ -54,7 +55,7 @@ class VoxelMap {
   void transform(const Pose& T);
 
   std::size_t pointCount() const { return point_count_; }
-  std::size_t voxelCount() const { return voxels_.size(); }
+  std::size_t voxelCount() const { return voxel_count_; }
   bool empty() const { return point_count_ == 0; }
 
  private:
@@ -66,11 +67,27 @@ class VoxelMap {
     Eigen::Vector3f p;
     Eigen::Vector3f view;  ///< unit direction towards the observing sensor, or zero
   };
+  /// A slot of the open-addressing index: a voxel's key, where its points
+  /// are (a block of capacity_ in points_) and how many it holds.
+  struct Slot {
+    Key key;
+    std::uint32_t block;
+    std::uint32_t count;
+  };
+  static constexpr Key kEmptyKey = ~Key{0};
+  const Slot* findSlot(Key key) const;
+  Slot& findOrAddSlot(Key key);
+  void rebuildIndex(std::size_t slots);
   void insertPoint(const Eigen::Vector3f& p, const Eigen::Vector3f& view);
 
   VoxelMapConfig config_;
   float inverse_size_;
-  std::unordered_map<Key, std::vector<MapPoint>> voxels_;
+  std::size_t capacity_;                    ///< points per voxel (block size)
+  std::vector<Slot> slots_;                 ///< power-of-two size, at most half full
+  std::vector<MapPoint> points_;            ///< blocks of capacity_ points
+  std::vector<Key> block_keys_;             ///< per block: its voxel's key, or kEmptyKey when free
+  std::vector<std::uint32_t> free_blocks_;  ///< blocks of dropped voxels, reused first
+  std::size_t voxel_count_ = 0;
   std::size_t point_count_ = 0;
 };
 
