@@ -141,42 +141,45 @@ void selectFeatures(const Scan& scan, const FeatureConfig& config, const Ring& r
   if (eligible.empty()) return;
   std::vector<bool> suppressed(n, false);
   const int sectors = std::max(config.sectors, 1);
-  std::vector<std::uint64_t> keys;
-  std::vector<int> order;
+  std::vector<std::uint64_t> edge_keys, plane_keys;
+  // Largest smoothness (sharpest) first, ties by position: integer sorts on
+  // (inverted smoothness bits, index) keys (a smoothness is >= 0, so its float
+  // bits order as it does). Only the edge candidates (above edge_threshold)
+  // and the planar ones (below plane_threshold, which is lower) are sorted:
+  // in the order of all points they are its two ends, in the same order.
+  const auto keyOf = [&](int i) {
+    std::uint32_t bits;
+    std::memcpy(&bits, &ring.smoothness[i], sizeof bits);
+    return (static_cast<std::uint64_t>(~bits) << 32) | static_cast<std::uint32_t>(i);
+  };
+  const auto indexOf = [](std::uint64_t key) { return static_cast<int>(key & 0xFFFFFFFFu); };
   for (int s = 0; s < sectors; ++s) {
     const std::size_t begin = eligible.size() * s / sectors;
     const std::size_t end = eligible.size() * (s + 1) / sectors;
-    // Largest smoothness (sharpest) first, ties by position: one integer sort
-    // on (inverted smoothness bits, index) keys (a smoothness is >= 0, so its
-    // float bits order as it does).
-    keys.clear();
+    edge_keys.clear();
+    plane_keys.clear();
     for (std::size_t e = begin; e < end; ++e) {
       const int i = eligible[e];
-      std::uint32_t bits;
-      std::memcpy(&bits, &ring.smoothness[i], sizeof bits);
-      keys.push_back((static_cast<std::uint64_t>(~bits) << 32) | static_cast<std::uint32_t>(i));
+      if (ring.smoothness[i] > config.edge_threshold) edge_keys.push_back(keyOf(i));
+      if (ring.smoothness[i] < config.plane_threshold) plane_keys.push_back(keyOf(i));
     }
-    std::sort(keys.begin(), keys.end());
-    order.resize(keys.size());
-    for (std::size_t j = 0; j < keys.size(); ++j)
-      order[j] = static_cast<int>(keys[j] & 0xFFFFFFFFu);
-    int picked = 0;
-    for (int i : order) {
-      if (ring.smoothness[i] <= config.edge_threshold) break;
-      ++result.edge_candidates;
-      if (suppressed[i] || picked >= config.max_edges_per_sector) continue;
-      edges.push_back(scan.points[ring.index[i]].p);
-      ++picked;
-      for (int j = std::max(i - config.neighbours, 0); j <= std::min(i + config.neighbours, n - 1);
-           ++j)
-        if (ring.segment[j] == ring.segment[i]) suppressed[j] = true;
-    }
-    for (int i : order) {
-      if (ring.smoothness[i] < config.plane_threshold) {
-        planes.push_back(scan.points[ring.index[i]].p);
-        ++result.plane_candidates;
+    result.edge_candidates += static_cast<std::int64_t>(edge_keys.size());
+    if (config.max_edges_per_sector > 0) {
+      std::sort(edge_keys.begin(), edge_keys.end());
+      int picked = 0;
+      for (std::uint64_t key : edge_keys) {
+        const int i = indexOf(key);
+        if (suppressed[i] || picked >= config.max_edges_per_sector) continue;
+        edges.push_back(scan.points[ring.index[i]].p);
+        ++picked;
+        for (int j = std::max(i - config.neighbours, 0);
+             j <= std::min(i + config.neighbours, n - 1); ++j)
+          if (ring.segment[j] == ring.segment[i]) suppressed[j] = true;
       }
     }
+    std::sort(plane_keys.begin(), plane_keys.end());
+    for (std::uint64_t key : plane_keys) planes.push_back(scan.points[ring.index[indexOf(key)]].p);
+    result.plane_candidates += static_cast<std::int64_t>(plane_keys.size());
   }
 }
 

@@ -1,18 +1,12 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <unordered_map>
+#include <limits>
 
 #include "odometry/features.h"
 
 namespace storey {
 namespace {
-
-struct VoxelAccumulator {
-  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-  std::uint32_t count = 0;
-  std::uint32_t first_index = 0;  // keeps the output order deterministic
-};
 
 std::uint64_t voxelKey(const Eigen::Vector3f& p, double inverse_size) {
   // 21 bits per axis around the origin: +-1e6 voxels, plenty for a building.
@@ -24,41 +18,61 @@ std::uint64_t voxelKey(const Eigen::Vector3f& p, double inverse_size) {
   return (cell(p.x()) << 42) | (cell(p.y()) << 21) | cell(p.z());
 }
 
+struct Voxel {
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  std::uint32_t count = 0;
+  std::uint32_t nearest = 0;  ///< the point nearest to the centroid so far
+  float nearest_d2 = 0.0f;
+  bool has_nearest = false;
+};
+
 }  // namespace
 
 std::vector<Eigen::Vector3f> voxelDownsample(const std::vector<Eigen::Vector3f>& points,
                                              double voxel_size) {
   if (voxel_size <= 0.0) return points;
   const double inverse_size = 1.0 / voxel_size;
-  std::unordered_map<std::uint64_t, VoxelAccumulator> voxels;
-  voxels.reserve(points.size());
-  for (std::uint32_t i = 0; i < points.size(); ++i) {
-    auto [it, inserted] = voxels.try_emplace(voxelKey(points[i], inverse_size));
-    if (inserted) it->second.first_index = i;
-    it->second.sum += points[i].cast<double>();
-    ++it->second.count;
-  }
-  std::vector<const VoxelAccumulator*> ordered;
-  ordered.reserve(voxels.size());
-  for (const auto& [key, voxel] : voxels) ordered.push_back(&voxel);
-  std::sort(ordered.begin(), ordered.end(),
-            [](const auto* a, const auto* b) { return a->first_index < b->first_index; });
-  std::vector<Eigen::Vector3f> result;
-  result.reserve(ordered.size());
-  // The point nearest to each voxel's centroid represents it: a centroid of
-  // points from two surfaces (a floor and a wall at their crease) would lie
-  // on neither, a real point lies on its surface.
-  std::unordered_map<std::uint64_t, std::pair<float, std::uint32_t>> nearest;
-  nearest.reserve(voxels.size());
+  // Voxels numbered in the order of their first point (the output's order),
+  // found through an open-addressing table of at most half load.
+  constexpr std::uint64_t kEmpty = std::numeric_limits<std::uint64_t>::max();
+  std::size_t size = 16;
+  while (size < 2 * points.size()) size *= 2;
+  const std::size_t mask = size - 1;
+  std::vector<std::uint64_t> slot_keys(size, kEmpty);
+  std::vector<std::uint32_t> slot_voxels(size, 0);
+  std::vector<Voxel> voxels;
+  std::vector<std::uint32_t> voxel_of(points.size());
   for (std::uint32_t i = 0; i < points.size(); ++i) {
     const std::uint64_t key = voxelKey(points[i], inverse_size);
-    const VoxelAccumulator& voxel = voxels.at(key);
-    const float d2 = (points[i] - (voxel.sum / voxel.count).cast<float>()).squaredNorm();
-    auto [it, inserted] = nearest.try_emplace(key, d2, i);
-    if (!inserted && d2 < it->second.first) it->second = {d2, i};
+    std::uint64_t h = key * 0x9E3779B97F4A7C15ull;
+    h ^= h >> 29;
+    std::size_t slot = static_cast<std::size_t>(h) & mask;
+    while (slot_keys[slot] != kEmpty && slot_keys[slot] != key) slot = (slot + 1) & mask;
+    if (slot_keys[slot] == kEmpty) {
+      slot_keys[slot] = key;
+      slot_voxels[slot] = static_cast<std::uint32_t>(voxels.size());
+      voxels.emplace_back();
+    }
+    const std::uint32_t v = slot_voxels[slot];
+    voxel_of[i] = v;
+    voxels[v].sum += points[i].cast<double>();
+    ++voxels[v].count;
   }
-  for (const auto* voxel : ordered)
-    result.push_back(points[nearest.at(voxelKey(points[voxel->first_index], inverse_size)).second]);
+  // The point nearest to each voxel's centroid represents it (the first of
+  // equals): a centroid of points from two surfaces (a floor and a wall at
+  // their crease) would lie on neither, a real point lies on its surface.
+  for (std::uint32_t i = 0; i < points.size(); ++i) {
+    Voxel& voxel = voxels[voxel_of[i]];
+    const float d2 = (points[i] - (voxel.sum / voxel.count).cast<float>()).squaredNorm();
+    if (!voxel.has_nearest || d2 < voxel.nearest_d2) {
+      voxel.nearest_d2 = d2;
+      voxel.nearest = i;
+      voxel.has_nearest = true;
+    }
+  }
+  std::vector<Eigen::Vector3f> result;
+  result.reserve(voxels.size());
+  for (const Voxel& voxel : voxels) result.push_back(points[voxel.nearest]);
   return result;
 }
 
