@@ -20,8 +20,8 @@
 ///   dx_world/dv   = -2 w_q [y]x + 2 (v y^T + (v . y) I - 2 y v^T)
 ///   dx_world/dw_q = 2 v x y
 /// Point-to-plane: dr/dx_world = w n^T; point-to-line: dr/dx_world = -w [u]x.
-#include <Eigen/Core>
 #include <ceres/sized_cost_function.h>
+#include <Eigen/Core>
 
 namespace storey {
 
@@ -83,9 +83,14 @@ class ScanResidualsFactor final : public ceres::CostFunction {
                       double huber_threshold);
   bool Evaluate(double const* const* parameters, double* residuals,
                 double** jacobians) const override;
-  /// Sum of squared whitened residuals at `pose` without robust weights.
   int planeCount() const { return static_cast<int>(planes_.size()); }
   int lineCount() const { return static_cast<int>(lines_.size()); }
+  /// At `pose`: the sum of the squared residuals and, with H and g, the
+  /// normal equations of the residuals in the ambient coordinates,
+  /// H = sum J_i^T J_i and g = sum J_i^T r_i, up to a change along the
+  /// quaternion itself (which the pose manifold never makes).
+  void normalEquations(const double* pose, double& cost, Eigen::Matrix<double, 7, 7>* H,
+                       Eigen::Matrix<double, 7, 1>* g) const;
 
  private:
   struct Plane {
@@ -98,6 +103,26 @@ class ScanResidualsFactor final : public ceres::CostFunction {
   };
   std::vector<Plane> planes_;
   std::vector<Line> lines_;
+};
+
+/// The same least-squares problem as a ScanResidualsFactor in 8 residuals:
+/// with H = V diag(lambda) V^T and g its normal equations at the evaluated
+/// pose and c its cost (sum of squared residuals),
+///   r' = [diag(lambda)^-1/2 V^T g ; sqrt(c - |that|^2)],  J' = [diag(lambda)^1/2 V^T ; 0],
+/// so J'^T J' = H, J'^T r' = g and |r'|^2 = c: Gauss-Newton and
+/// Levenberg-Marquardt take the same steps and see the same cost, while Ceres
+/// handles 8 rows instead of one per point (its per-row work, validation,
+/// scaling and products, was most of the odometry's solve).
+class CompressedScanFactor final : public ceres::SizedCostFunction<8, 7> {
+ public:
+  /// As ScanResidualsFactor's constructor.
+  CompressedScanFactor(const MatchResult& matches, const double* pose_for_weights,
+                       double huber_threshold);
+  bool Evaluate(double const* const* parameters, double* residuals,
+                double** jacobians) const override;
+
+ private:
+  ScanResidualsFactor residuals_;
 };
 
 }  // namespace storey

@@ -432,11 +432,11 @@ void LidarInertialOdometry::optimise(Frame& newest) {
       Frame& frame = *window_[i];
       if (frame.matches.planes.empty() && frame.matches.lines.empty()) continue;
       problem.AddResidualBlock(
-          new ScanResidualsFactor(frame.matches, frame.blocks.pose, cfg.huber_threshold), nullptr,
+          new CompressedScanFactor(frame.matches, frame.blocks.pose, cfg.huber_threshold), nullptr,
           frame.blocks.pose);
     }
     ceres::Solver::Options options;
-    options.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
+    options.linear_solver_type = ceres::DENSE_NORMAL_CHOLESKY;
     options.max_num_iterations = std::max(cfg.max_iterations, 1);
     options.num_threads = 1;
     options.logging_type = ceres::SILENT;
