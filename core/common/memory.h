@@ -10,4 +10,8 @@ namespace storey {
 /// malloc_trim; nothing elsewhere).
 void returnFreedMemory();
 
+/// The process's peak resident size so far [MiB] (Linux: VmHWM of
+/// /proc/self/status); -1 where unknown.
+double peakResidentMiB();
+
 }  // namespace storey

@@ -3,6 +3,7 @@
 #include <cstdio>
 
 #include "common/log.h"
+#include "common/memory.h"
 #include "common/stopwatch.h"
 #include "export/map_export.h"
 
@@ -19,6 +20,7 @@ MapStage buildMapStage(MapScanSelector& map_scans, const SlamResult& slam,
     T_world_lidar_per_map_scan.push_back(slam.trajectory[s].pose);
   MapCloud map = builder.build(T_world_lidar_per_map_scan, progress);
   stage.seconds_build = watch.seconds();
+  stage.peak_mib_after_build = peakResidentMiB();
   stage.build = builder.stats();
   stage.voxel_size = builder.config().voxel_size;
   const int export_threads = builder.config().export_threads;
@@ -40,6 +42,7 @@ MapStage buildMapStage(MapScanSelector& map_scans, const SlamResult& slam,
     logInfo("storeys: segmentation switched off (storeys.enabled: false)");
   }
   stage.seconds_storeys = watch.seconds();
+  stage.peak_mib_after_storeys = peakResidentMiB();
   for (const StoreyInfo& s : stage.storeys.storeys) {
     char line[160];
     std::snprintf(line, sizeof(line), "storey %d: floor %.3f m, footprint %.1f m^2, %zu points",
@@ -51,6 +54,7 @@ MapStage buildMapStage(MapScanSelector& map_scans, const SlamResult& slam,
   stage.files =
       writeMapFiles(out_dir, map, stage.storeys, stage.voxel_size, progress, export_threads);
   stage.seconds_export = watch.seconds();
+  stage.peak_mib_after_export = peakResidentMiB();
   stage.map = std::make_shared<const MapCloud>(std::move(map));
   return stage;
 }

@@ -20,6 +20,8 @@ struct MapStage {
   MapBuildStats build;
   double voxel_size = 0.0;                                                  ///< [m]
   double seconds_build = 0.0, seconds_storeys = 0.0, seconds_export = 0.0;  ///< wall time [s]
+  /// The process's peak resident size at the end of each step [MiB] (-1: unknown).
+  double peak_mib_after_build = -1.0, peak_mib_after_storeys = -1.0, peak_mib_after_export = -1.0;
   std::vector<std::string> files;  ///< written, relative to the output folder
 };
 

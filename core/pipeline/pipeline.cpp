@@ -61,6 +61,7 @@ PipelineResult runPipeline(const std::string& log_path, const Config& config,
   report.setInitialisation(odometry->initialState(), odometry->initialisation());
   report.setTrajectory(slam.trajectory);
   report.setWallTime(wall.seconds());
+  report.setStreamingPeakMemory(peakResidentMiB());
   if (slam.stats) report.setBackend(*slam.stats);
   // The streaming stages are done: their memory (the odometry's local map,
   // the graph, the log's index) goes back before the map stage needs it.

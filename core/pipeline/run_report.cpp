@@ -27,6 +27,7 @@ struct RunReportBuilder::Data {
   std::optional<BackendStats> backend;
   std::optional<nlohmann::json> map, storeys;
   std::optional<double> wall_seconds_total;
+  nlohmann::json peak_memory = nlohmann::json::object();
   std::optional<std::vector<std::string>> files;
   std::vector<std::string> warnings;
   std::size_t warning_count = 0;
@@ -175,9 +176,16 @@ void RunReportBuilder::setMap(const MapStage& o) {
         {"regions", s.seconds_regions},
         {"footprints", s.seconds_footprints},
         {"export", o.seconds_export}}}};
+  data_->peak_memory["map_build"] = o.peak_mib_after_build;
+  data_->peak_memory["storeys"] = o.peak_mib_after_storeys;
+  data_->peak_memory["export"] = o.peak_mib_after_export;
   nlohmann::json table = storeyTableJson(o.storeys.storeys);
   for (nlohmann::json& entry : table) entry.erase("footprint");  // in storeys.json
   data_->storeys = table;
+}
+
+void RunReportBuilder::setStreamingPeakMemory(double mib) {
+  data_->peak_memory["streaming"] = mib;
 }
 
 void RunReportBuilder::setTotalWallTime(double seconds) {
@@ -309,6 +317,9 @@ nlohmann::json RunReportBuilder::json() const {
   if (d.map) report["map"] = *d.map;
   if (d.storeys) report["storeys"] = *d.storeys;
   if (d.wall_seconds_total) report["wall_time_s_total"] = *d.wall_seconds_total;
+  // The process's peak resident size [MiB] at the end of each stage (it only
+  // grows: the stage that raised it is the one whose figure first reaches the last).
+  if (!d.peak_memory.empty()) report["peak_memory_mib_after"] = d.peak_memory;
   if (d.files) report["files"] = *d.files;
   report["warning_count"] = d.warning_count;
   report["warnings"] = d.warnings;

@@ -34,6 +34,8 @@ class RunReportBuilder {
   void setTimeOffset(const TimeOffsetEstimate& estimate, double configured_s);
   void setTrajectory(const Trajectory& trajectory);
   void setWallTime(double seconds);
+  /// The process's peak resident size at the end of the streaming stages [MiB].
+  void setStreamingPeakMemory(double mib);
   /// The SRP back end's counts and timings (absent with --no-srp).
   void setBackend(const BackendStats& stats);
   /// The map stage's counts and timings and the storey table.

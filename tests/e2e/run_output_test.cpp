@@ -92,6 +92,21 @@ TEST_F(RunOutput, StderrHasPlainProgressLinesAndLogLinesWhenItIsNoTerminal) {
   // (A speed needs 1 s of reading: the tiny log may be read faster than that.)
 }
 
+TEST_F(RunOutput, ReportHasThePeakMemoryAtTheEndOfEachStage) {
+  ASSERT_EQ(run_->exit_code, 0) << run_->err;
+  const nlohmann::json report =
+      nlohmann::json::parse(test::readText(dir_->file("out/report.json")));
+  const nlohmann::json& peak = report["peak_memory_mib_after"];
+  double previous = 1.0;  // MiB: any real process holds more
+  for (const char* stage : {"streaming", "map_build", "storeys", "export"}) {
+    ASSERT_TRUE(peak.contains(stage)) << peak.dump();
+    const double mib = peak[stage].get<double>();
+    EXPECT_GE(mib, previous) << stage << ": a peak only grows; " << peak.dump();
+    EXPECT_LT(mib, 4096.0) << stage;
+    previous = mib;
+  }
+}
+
 TEST_F(RunOutput, SummaryOnStdoutHasTheReportsNumbersAndTheFiles) {
   ASSERT_EQ(run_->exit_code, 0) << run_->err;
   const nlohmann::json report =
