@@ -8,7 +8,7 @@
 
 #include "common/error.h"
 #include "map/chunked_array.h"
-#include "map/voxel_hash.h"
+#include "types/voxel_hash.h"
 
 namespace storey {
 

@@ -1,9 +1,8 @@
-#include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <limits>
 
 #include "odometry/features.h"
+#include "types/voxel_hash.h"
 
 namespace storey {
 namespace {
@@ -32,28 +31,14 @@ std::vector<Eigen::Vector3f> voxelDownsample(const std::vector<Eigen::Vector3f>&
                                              double voxel_size) {
   if (voxel_size <= 0.0) return points;
   const double inverse_size = 1.0 / voxel_size;
-  // Voxels numbered in the order of their first point (the output's order),
-  // found through an open-addressing table of at most half load.
-  constexpr std::uint64_t kEmpty = std::numeric_limits<std::uint64_t>::max();
-  std::size_t size = 16;
-  while (size < 2 * points.size()) size *= 2;
-  const std::size_t mask = size - 1;
-  std::vector<std::uint64_t> slot_keys(size, kEmpty);
-  std::vector<std::uint32_t> slot_voxels(size, 0);
+  // Voxels numbered in the order of their first point (the output's order).
+  VoxelIndex index(points.size());
   std::vector<Voxel> voxels;
   std::vector<std::uint32_t> voxel_of(points.size());
   for (std::uint32_t i = 0; i < points.size(); ++i) {
-    const std::uint64_t key = voxelKey(points[i], inverse_size);
-    std::uint64_t h = key * 0x9E3779B97F4A7C15ull;
-    h ^= h >> 29;
-    std::size_t slot = static_cast<std::size_t>(h) & mask;
-    while (slot_keys[slot] != kEmpty && slot_keys[slot] != key) slot = (slot + 1) & mask;
-    if (slot_keys[slot] == kEmpty) {
-      slot_keys[slot] = key;
-      slot_voxels[slot] = static_cast<std::uint32_t>(voxels.size());
-      voxels.emplace_back();
-    }
-    const std::uint32_t v = slot_voxels[slot];
+    bool inserted = false;
+    const std::uint32_t v = index.findOrInsert(voxelKey(points[i], inverse_size), inserted);
+    if (inserted) voxels.emplace_back();
     voxel_of[i] = v;
     voxels[v].sum += points[i].cast<double>();
     ++voxels[v].count;

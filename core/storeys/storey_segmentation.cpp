@@ -9,7 +9,7 @@
 #include <unordered_set>
 
 #include "common/error.h"
-#include "map/voxel_hash.h"
+#include "types/voxel_hash.h"
 
 namespace storey {
 

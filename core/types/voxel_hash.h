@@ -2,7 +2,8 @@
 /// A compact open-addressing hash from a voxel's integer coordinates to a
 /// dense index (0, 1, 2, ... in insertion order): 12 bytes a slot, grown
 /// (doubled) at three-quarter load, so 16-32 bytes an entry. Used by map
-/// assembly and by the storey stage's subsampling.
+/// assembly, the storey stage's subsampling and the odometry's feature
+/// downsampling.
 #include <Eigen/Core>
 #include <cmath>
 #include <cstdint>
