@@ -1,6 +1,7 @@
 #include "backend/plane_hull.h"
 
 #include <algorithm>
+#include <limits>
 
 #include "backend/plane_math.h"
 
@@ -12,9 +13,57 @@ double cross(const Eigen::Vector2d& o, const Eigen::Vector2d& a, const Eigen::Ve
   return (a - o).x() * (b - o).y() - (a - o).y() * (b - o).x();
 }
 
+/// Akl-Toussaint: a point strictly inside the polygon of the extreme points
+/// (least and greatest x, y, x + y and x - y: an octagon) is no hull vertex.
+/// Dropping those before the sort leaves the hull unchanged and the sort
+/// short (a plane's inliers are thousands of points, its hull a few dozen).
+/// Points within a small margin of the polygon's sides are kept, so rounding
+/// decides nothing.
+void dropInteriorPoints(std::vector<Eigen::Vector2d>& p) {
+  if (p.size() < 16) return;
+  // Directions counter-clockwise from -y: the extreme value along each...
+  const double dirs[8][2] = {{0, -1}, {1, -1}, {1, 0}, {1, 1}, {0, 1}, {-1, 1}, {-1, 0}, {-1, -1}};
+  double best_value[8];
+  for (int e = 0; e < 8; ++e) best_value[e] = -std::numeric_limits<double>::infinity();
+  for (const Eigen::Vector2d& q : p)
+    for (int e = 0; e < 8; ++e)
+      best_value[e] = std::max(best_value[e], dirs[e][0] * q.x() + dirs[e][1] * q.y());
+  // ... and the first point that has it: the octagon's corners, a corner
+  // extreme in two directions once.
+  Eigen::Vector2d corner[8];
+  int corners = 0;
+  for (int e = 0; e < 8; ++e) {
+    std::size_t i = 0;
+    while (dirs[e][0] * p[i].x() + dirs[e][1] * p[i].y() != best_value[e]) ++i;
+    if (corners == 0 || p[i] != corner[corners - 1]) corner[corners++] = p[i];
+  }
+  while (corners > 1 && corner[corners - 1] == corner[0]) --corners;
+  if (corners < 3) return;
+  const double span = (best_value[2] + best_value[6]) + (best_value[4] + best_value[0]);
+  if (!(span > 0.0)) return;
+  // Side e keeps q on its left: a_e x + b_e y > c_e (a margin of rounding
+  // above the line through its corners: cross products are lengths squared).
+  const double margin = 1e-9 * span * span;
+  double a[8], b[8], c[8];
+  for (int e = 0; e < corners; ++e) {
+    const Eigen::Vector2d& o = corner[e];
+    const Eigen::Vector2d& t = corner[(e + 1) % corners];
+    a[e] = -(t.y() - o.y());
+    b[e] = t.x() - o.x();
+    c[e] = a[e] * o.x() + b[e] * o.y() + margin;
+  }
+  const auto strictlyInside = [&](const Eigen::Vector2d& q) {
+    for (int e = 0; e < corners; ++e)
+      if (!(a[e] * q.x() + b[e] * q.y() > c[e])) return false;
+    return true;
+  };
+  p.erase(std::remove_if(p.begin(), p.end(), strictlyInside), p.end());
+}
+
 }  // namespace
 
 std::vector<Eigen::Vector2d> convexHull(std::vector<Eigen::Vector2d> p) {
+  dropInteriorPoints(p);
   std::sort(p.begin(), p.end(), [](const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
     return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y());
   });
