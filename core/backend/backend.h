@@ -41,6 +41,9 @@ struct BackendStats {
   // Wall-clock times per keyframe [ms]: extraction and association at every
   // keyframe, optimisation at the keyframes that ran one.
   std::vector<double> ms_extraction, ms_association, ms_optimisation;
+  // The whole of each keyframe's work (extraction, association, graph
+  // update and solve): wall clock and the back end thread's CPU time [ms].
+  std::vector<double> ms_keyframe, cpu_ms_keyframe;
   std::vector<double> ms_full_optimisation, ms_window_optimisation;  ///< the two kinds of solve
   std::vector<int> optimisation_keyframes;  ///< graph size at each optimisation
   double ms_final_optimisation = 0.0;

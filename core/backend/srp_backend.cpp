@@ -7,6 +7,7 @@
 #include "backend/plane_graph.h"
 #include "backend/solve_schedule.h"
 #include "common/error.h"
+#include "common/stopwatch.h"
 
 namespace storey {
 
@@ -87,6 +88,14 @@ struct SrpBackend::Impl {
   /// Adds the newest scan as a keyframe (T_world_lidar: its odometry pose
   /// corrected as of the last solve); optimises when a plane constraint appears.
   void processKeyframe(const std::vector<Eigen::Vector3f>& points, const Pose& T_world_lidar) {
+    const auto start = Clock::now();
+    const double cpu_start = threadCpuSeconds();
+    processKeyframeTimed(points, T_world_lidar);
+    stats.ms_keyframe.push_back(msSince(start));
+    stats.cpu_ms_keyframe.push_back(1e3 * (threadCpuSeconds() - cpu_start));
+  }
+
+  void processKeyframeTimed(const std::vector<Eigen::Vector3f>& points, const Pose& T_world_lidar) {
     const std::size_t scan_index = scans.size() - 1;
     const Pose& T_odom_lidar = scans.back().T_odom_lidar;
     // Best current estimate: the last optimised keyframe and the odometry since.

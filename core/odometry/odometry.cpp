@@ -12,6 +12,7 @@
 
 #include "common/error.h"
 #include "common/log.h"
+#include "common/stopwatch.h"
 #include "imu/imu_factor.h"
 #include "imu/imu_initializer.h"
 #include "imu/imu_pose_table.h"
@@ -290,6 +291,7 @@ void LidarInertialOdometry::trimImu() {
 
 void LidarInertialOdometry::processScan(const Scan& scan) {
   const auto start = Clock::now();
+  const double cpu_start = threadCpuSeconds();
   const OdometryConfig& cfg = config_;
   const double gravity = sensor_.imu.gravity;
   auto frame = std::make_unique<Frame>();
@@ -383,6 +385,7 @@ void LidarInertialOdometry::processScan(const Scan& scan) {
   if (window_.size() >= 2 && !plane_map_.empty()) optimise(newest);
   if (window_.size() == 1 && plane_map_.empty()) slide();  // the very first scan seeds the map
   newest.stats.ms_total = msSince(start);
+  newest.stats.cpu_ms_total = 1e3 * (threadCpuSeconds() - cpu_start);
 }
 
 void LidarInertialOdometry::seedLocalMap(const Pose& T_world_imu_first) {

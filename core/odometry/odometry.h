@@ -51,6 +51,7 @@ struct OdometryScanStats {
   // Wall-clock time of each stage for this scan [ms].
   double ms_preintegration = 0.0, ms_deskew = 0.0, ms_features = 0.0, ms_matching = 0.0,
          ms_optimisation = 0.0, ms_total = 0.0;
+  double cpu_ms_total = 0.0;  ///< the odometry thread's CPU time for this scan [ms]
 };
 
 /// The odometry's estimate of one scan, final once it left the window.

@@ -18,7 +18,7 @@ struct RunReportBuilder::Data {
   double log_seconds = 0.0;
   std::int64_t scans = 0;
   std::vector<double> ms_preintegration, ms_deskew, ms_features, ms_matching, ms_optimisation,
-      ms_total, edges, planes, plane_matches, line_matches, iterations;
+      ms_total, cpu_ms_total, edges, planes, plane_matches, line_matches, iterations;
   std::array<std::int64_t, static_cast<std::size_t>(FeatureReject::kCount)> feature_rejects{};
   std::array<std::int64_t, static_cast<std::size_t>(MatchReject::kCount)> match_rejects{};
   std::int64_t degenerate_scans = 0;
@@ -48,6 +48,7 @@ void RunReportBuilder::addScan(const OdometryResult& scan) {
   d.ms_matching.push_back(s.ms_matching);
   d.ms_optimisation.push_back(s.ms_optimisation);
   d.ms_total.push_back(s.ms_total);
+  d.cpu_ms_total.push_back(s.cpu_ms_total);
   d.edges.push_back(static_cast<double>(s.edge_features));
   d.planes.push_back(static_cast<double>(s.plane_features));
   d.plane_matches.push_back(static_cast<double>(s.plane_matches));
@@ -257,7 +258,9 @@ nlohmann::json backendJson(const Config& config, const std::optional<BackendStat
             {"optimisation", summary(b.ms_optimisation)},
             {"optimisation_newest_keyframes", summary(b.ms_window_optimisation)},
             {"optimisation_whole_graph", summary(b.ms_full_optimisation)},
-            {"final_optimisation", b.ms_final_optimisation}}},
+            {"final_optimisation", b.ms_final_optimisation},
+            {"total", summary(b.ms_keyframe)},
+            {"total_cpu", summary(b.cpu_ms_keyframe)}}},
           {"keyframes_in_graph_at_optimisation", summary(graph_sizes)}};
 }
 
@@ -297,7 +300,8 @@ nlohmann::json RunReportBuilder::json() const {
         {"features", summary(d.ms_features)},
         {"matching", summary(d.ms_matching)},
         {"optimisation", summary(d.ms_optimisation)},
-        {"total_per_scan", summary(d.ms_total)}}},
+        {"total_per_scan", summary(d.ms_total)},
+        {"total_per_scan_cpu", summary(d.cpu_ms_total)}}},
       {"features_per_scan", {{"edges", summary(d.edges)}, {"planes", summary(d.planes)}}},
       {"matches_per_scan",
        {{"point_to_plane", summary(d.plane_matches)}, {"point_to_line", summary(d.line_matches)}}},

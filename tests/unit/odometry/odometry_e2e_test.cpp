@@ -74,7 +74,18 @@ TEST(OdometryEndToEnd, TinyPresetStaysOnTheTruth) {
   expectAccurate(e);
   // The report carries timings and counts.
   const auto& odometry = e.report.at("odometry");
-  EXPECT_GT(odometry.at("timing_ms").at("total_per_scan").at("median").get<double>(), 0.0);
+  const auto& timing = odometry.at("timing_ms");
+  EXPECT_GT(timing.at("total_per_scan").at("median").get<double>(), 0.0);
+  // The thread's CPU time: positive, and no more than its wall-clock time.
+  const double cpu_ms = timing.at("total_per_scan_cpu").at("median").get<double>();
+  EXPECT_GT(cpu_ms, 0.0);
+  EXPECT_LE(cpu_ms, 1.01 * timing.at("total_per_scan").at("median").get<double>() + 0.05);
+  // The back end's whole work per keyframe, wall clock and CPU.
+  const auto& keyframe = e.report.at("backend").at("timing_ms_per_keyframe");
+  EXPECT_GT(keyframe.at("total").at("median").get<double>(), 0.0);
+  EXPECT_GT(keyframe.at("total_cpu").at("median").get<double>(), 0.0);
+  EXPECT_GE(keyframe.at("total").at("median").get<double>(),
+            keyframe.at("srp_extraction").at("median").get<double>());
   EXPECT_GT(odometry.at("matches_per_scan").at("point_to_plane").at("median").get<double>(), 100.0);
   EXPECT_TRUE(odometry.at("rejected_matches").is_object());
   EXPECT_TRUE(odometry.contains("degenerate_scans"));
