@@ -406,9 +406,20 @@ void LidarInertialOdometry::seedLocalMap(const Pose& T_world_imu_first) {
 
 void LidarInertialOdometry::optimise(Frame& newest) {
   const OdometryConfig& cfg = config_;
+  // A dense sensor's planar features beyond max_matched_planes are thinned
+  // evenly (every one still enters the local map).
+  std::vector<Eigen::Vector3d> thinned;
+  const std::size_t budget = static_cast<std::size_t>(std::max(cfg.max_matched_planes, 0));
+  if (budget > 0 && newest.planes_imu.size() > budget) {
+    thinned.reserve(budget);
+    for (std::size_t i = 0; i < budget; ++i)
+      thinned.push_back(newest.planes_imu[i * newest.planes_imu.size() / budget]);
+  }
+  const std::vector<Eigen::Vector3d>& matched_planes =
+      thinned.empty() ? newest.planes_imu : thinned;
   for (int round = 0; round < std::max(cfg.matching_rounds, 1); ++round) {
     auto t = Clock::now();
-    newest.matches = matchFeatures(newest.planes_imu, newest.edges_imu,
+    newest.matches = matchFeatures(matched_planes, newest.edges_imu,
                                    newest.blocks.toState(newest.state_ns).T_world_imu, plane_map_,
                                    edge_map_, cfg, sensor_.T_imu_lidar.translation());
     newest.stats.ms_matching += msSince(t);

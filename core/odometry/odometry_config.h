@@ -16,6 +16,8 @@ struct OdometryConfig {
   int window_size = 3;                  ///< states optimised together (oldest held fixed) [>= 2]
   int matching_rounds = 2;              ///< feature association rounds per scan [>= 1]
   int max_iterations = 4;               ///< Ceres iterations per round [>= 1]
+  int max_matched_planes = 1500;        ///< planar features of a scan matched to the map: more are
+                                        ///< thinned evenly (all still enter the map); 0: all [>= 0]
   int neighbours = 8;                   ///< map points used to fit a plane or a line [>= 3]
                                         ///< (5 fitted false planes across stair steps: odometry.md)
   double max_neighbour_distance = 0.5;  ///< farthest map neighbour of a feature [m]
@@ -36,7 +38,8 @@ struct OdometryConfig {
   double pose_sigma_translation = 0.02;      ///< accuracy of a registered pose, used when the
                                              ///< oldest state leaves the window [m]
   double pose_sigma_rotation = 0.005;        ///< same for its rotation [rad]
-  double max_scan_gap = 0.5;  ///< a longer time between scans is logged (the reader warns: faults) [s]
+  double max_scan_gap =
+      0.5;  ///< a longer time between scans is logged (the reader warns: faults) [s]
 
   /// Checks value ranges; throws storey::Error naming the key (under `odometry.`) at fault.
   void validate() const;

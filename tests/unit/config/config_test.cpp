@@ -111,6 +111,16 @@ TEST(Config, MistypedValueIsNamed) {
   EXPECT_NE(message.find("must be positive"), std::string::npos) << message;
 }
 
+TEST(Config, NegativeFeatureBudgetIsNamed) {
+  Config config;
+  const std::string message =
+      errorOf([&] { applyConfigYaml(config, "odometry:\n  max_matched_planes: -1\n", "c.yaml"); });
+  EXPECT_NE(message.find("odometry.max_matched_planes"), std::string::npos) << message;
+  EXPECT_NE(message.find("must be >= 0"), std::string::npos) << message;
+  applyConfigYaml(config, "odometry:\n  max_matched_planes: 0\n", "c.yaml");
+  EXPECT_EQ(config.odometry.max_matched_planes, 0);
+}
+
 TEST(Config, InvalidYamlNamesLine) {
   Config config;
   const std::string message =

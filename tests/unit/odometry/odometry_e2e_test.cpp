@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <functional>
 #include <nlohmann/json.hpp>
 
 #include "common/error.h"
@@ -29,13 +30,15 @@ struct RunErrors {
   nlohmann::json report;
 };
 
-RunErrors simulateAndRun(const sim::BuildingSpec& spec) {
+RunErrors simulateAndRun(const sim::BuildingSpec& spec,
+                         const std::function<void(Config&)>& edit_config = {}) {
   test::TempDir dir;
   const std::string sim_dir = dir.file("sim");
   sim::SimulationOptions options;
   options.compress = false;
   sim::simulate(spec, options, sim_dir);
-  const Config config = loadRunConfig("", sim_dir + "/" + sim::kCalibrationFile);
+  Config config = loadRunConfig("", sim_dir + "/" + sim::kCalibrationFile);
+  if (edit_config) edit_config(config);
   const PipelineResult result = runPipeline(sim_dir + "/" + sim::kBagFile, config, dir.file("out"));
   const Trajectory gt = readTum(sim_dir + "/" + sim::kLidarTruthFile);
 
@@ -90,6 +93,22 @@ TEST(OdometryEndToEnd, TinyPresetStaysOnTheTruth) {
   EXPECT_TRUE(odometry.at("rejected_matches").is_object());
   EXPECT_TRUE(odometry.contains("degenerate_scans"));
   RecordProperty("ate_rmse_m", std::to_string(e.ate_rmse));
+}
+
+TEST(OdometryEndToEnd, AFeatureBudgetMatchesAtMostThatManyPlanesAndStaysOnTheTruth) {
+  // odometry.max_matched_planes thins a scan's planar features evenly before
+  // matching (a dense sensor's cost per scan); all of them still enter the map.
+  const int budget = 150;
+  const RunErrors e = simulateAndRun(sim::loadBuildingSpec("tiny"), [&](Config& config) {
+    config.odometry.max_matched_planes = budget;
+  });
+  expectAccurate(e);
+  const auto& odometry = e.report.at("odometry");
+  EXPECT_GT(odometry.at("features_per_scan").at("planes").at("median").get<double>(), 2.0 * budget)
+      << "the budget must bind on this log for the test to mean anything";
+  EXPECT_LE(odometry.at("matches_per_scan").at("point_to_plane").at("max").get<double>(), budget);
+  EXPECT_GT(odometry.at("matches_per_scan").at("point_to_plane").at("median").get<double>(),
+            0.5 * budget);
 }
 
 TEST(OdometryEndToEnd, ImuUpsideDownTurnedAt200Hz) {
