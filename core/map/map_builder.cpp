@@ -173,15 +173,16 @@ MapCloud MapBuilder::build(const std::vector<Pose>& T_world_lidar_per_scan,
     float dt;             ///< time offset of the first return in its scan [s]
   };
   ChunkedArray<Acc> acc;
-  ChunkedArray<std::uint64_t> keys;
-  // Grown with the map (not sized by the points stored, which grow with the log).
-  VoxelIndex index(std::size_t{1} << 20);
+  ChunkedArray<std::uint64_t> keys;  // keys[v]: voxel v's key, appended by the index
+  // Grown with the map (not sized by the points stored, which grow with the log);
+  // 4 bytes a slot over `keys`.
+  VoxelIndexOverKeys<ChunkedArray<std::uint64_t>> index(keys, std::size_t{1} << 20);
   std::vector<StoredPoint> points;
   // Points go through in batches: their voxels' slots are prefetched first,
-  // then looked up in order, then the found voxels' sums (prefetched by the
-  // lookup) are added to in order. Each voxel sees the same additions in the
+  // then the keys those slots point to, then looked up in order, then the found voxels' sums
+  // (prefetched by the lookup) are added to in order. Each voxel sees the same additions in the
   // same order as one point at a time, so the cloud is the same.
-  constexpr std::size_t kBatch = 32;
+  constexpr std::size_t kBatch = 64;
   struct Pending {
     std::uint64_t key;
     Eigen::Vector3f local;
@@ -212,13 +213,13 @@ MapCloud MapBuilder::build(const std::vector<Pose>& T_world_lidar_per_scan,
         q.dt = sp.dt;
         index.prefetch(q.key);
       }
+      for (std::size_t b = 0; b < count; ++b) index.prefetchKey(batch[b].key);
       for (std::size_t b = 0; b < count; ++b) {
         Pending& q = batch[b];
         q.voxel = index.findOrInsert(q.key, q.inserted);
         if (q.inserted) {
           acc.push_back({q.local.x(), q.local.y(), q.local.z(), q.intensity, 1,
                          static_cast<std::uint32_t>(e), q.dt});
-          keys.push_back(q.key);
         } else {
           __builtin_prefetch(&acc[q.voxel], 1);
         }
@@ -239,7 +240,7 @@ MapCloud MapBuilder::build(const std::vector<Pose>& T_world_lidar_per_scan,
       throw Cancelled();
   }
 
-  index = VoxelIndex(0);  // the hash table is not needed any more: free it first
+  index.release();  // the hash table is not needed any more: free it first
   MapCloud cloud;
   cloud.reserve(acc.size());
   constexpr std::int64_t kBias = std::int64_t{1} << 20;

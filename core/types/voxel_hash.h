@@ -1,9 +1,10 @@
 #pragma once
-/// A compact open-addressing hash from a voxel's integer coordinates to a
-/// dense index (0, 1, 2, ... in insertion order): 12 bytes a slot, grown
-/// (doubled) at three-quarter load, so 16-32 bytes an entry. Used by map
-/// assembly, the storey stage's subsampling and the odometry's feature
-/// downsampling.
+/// Compact open-addressing hashes from a voxel's integer coordinates to a
+/// dense index (0, 1, 2, ... in insertion order), grown (doubled) at
+/// three-quarter load: VoxelIndex, 12 bytes a slot (16-32 bytes an entry),
+/// used by the storey stage's subsampling, the odometry's feature
+/// downsampling and the SRP extraction's; VoxelIndexOverKeys, 4 bytes a slot
+/// over the caller's array of keys, used by map assembly (millions of voxels).
 #include <Eigen/Core>
 #include <cmath>
 #include <cstdint>
@@ -26,6 +27,20 @@ inline std::uint64_t voxelKey(const Eigen::Vector3d& p, double inverse_size) {
   return packVoxel(static_cast<std::int64_t>(std::floor(p.x() * inverse_size)),
                    static_cast<std::int64_t>(std::floor(p.y() * inverse_size)),
                    static_cast<std::int64_t>(std::floor(p.z() * inverse_size)));
+}
+
+/// The hash of a packed voxel key (Fibonacci multiply, high bits folded down).
+inline std::uint64_t voxelHash(std::uint64_t key) {
+  std::uint64_t h = key * 0x9E3779B97F4A7C15ull;
+  h ^= h >> 29;
+  return h;
+}
+
+/// Smallest power-of-two table (>= 16 slots) that holds n entries at <= 3/4 load.
+inline std::size_t voxelTableCapacity(std::size_t n) {
+  std::size_t c = 16;
+  while (3 * c < 4 * n) c *= 2;
+  return c;
 }
 
 class VoxelIndex {
@@ -74,15 +89,9 @@ class VoxelIndex {
 
  private:
   static constexpr std::uint64_t kEmpty = std::numeric_limits<std::uint64_t>::max();
-  static std::size_t capacityFor(std::size_t n) {
-    std::size_t c = 16;
-    while (3 * c < 4 * n) c *= 2;
-    return c;
-  }
+  static std::size_t capacityFor(std::size_t n) { return voxelTableCapacity(n); }
   std::size_t slotOf(std::uint64_t key) const {
-    std::uint64_t h = key * 0x9E3779B97F4A7C15ull;
-    h ^= h >> 29;
-    return static_cast<std::size_t>(h) & (keys_.size() - 1);
+    return static_cast<std::size_t>(voxelHash(key)) & (keys_.size() - 1);
   }
   void rehash(std::size_t capacity) {
     std::vector<std::uint64_t> old_keys(capacity, kEmpty);
@@ -101,6 +110,70 @@ class VoxelIndex {
   std::vector<std::uint64_t> keys_;
   std::vector<std::uint32_t> values_;
   std::size_t size_ = 0;
+};
+
+/// VoxelIndex with 4-byte slots for tables of many millions of voxels (the
+/// map's 2 cm voxels): the keys live in an array the index appends to (keys[i]
+/// is the key of index i, which the caller keeps anyway), and a slot holds
+/// only the index, so the table is a third of VoxelIndex's. A lookup reads
+/// the key of each index it probes (prefetchKey() asks for it ahead).
+/// KeyArray: size(), push_back(std::uint64_t), operator[] (e.g. ChunkedArray).
+template <typename KeyArray>
+class VoxelIndexOverKeys {
+ public:
+  static constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
+  /// `keys` must be empty and outlive the index.
+  VoxelIndexOverKeys(KeyArray& keys, std::size_t expected)
+      : keys_(keys), slots_(voxelTableCapacity(expected), kNone) {}
+
+  std::size_t size() const { return keys_.size(); }
+
+  std::uint32_t findOrInsert(std::uint64_t key, bool& inserted) {
+    if (4 * (keys_.size() + 1) > 3 * slots_.size()) rehash(slots_.size() * 2);
+    std::size_t slot = slotOf(key);
+    while (true) {
+      const std::uint32_t v = slots_[slot];
+      if (v == kNone) {
+        const auto index = static_cast<std::uint32_t>(keys_.size());
+        keys_.push_back(key);
+        slots_[slot] = index;
+        inserted = true;
+        return index;
+      }
+      if (keys_[v] == key) {
+        inserted = false;
+        return v;
+      }
+      slot = (slot + 1) & (slots_.size() - 1);
+    }
+  }
+
+  /// Asks the processor to load `key`'s first slot.
+  void prefetch(std::uint64_t key) const { __builtin_prefetch(&slots_[slotOf(key)]); }
+  /// After prefetch(key): asks for the key of the index in its first slot.
+  void prefetchKey(std::uint64_t key) const {
+    const std::uint32_t v = slots_[slotOf(key)];
+    if (v != kNone) __builtin_prefetch(&keys_[v]);
+  }
+
+  /// Frees the table (the keys stay); the index must not be used after.
+  void release() { std::vector<std::uint32_t>().swap(slots_); }
+
+ private:
+  std::size_t slotOf(std::uint64_t key) const {
+    return static_cast<std::size_t>(voxelHash(key)) & (slots_.size() - 1);
+  }
+  void rehash(std::size_t capacity) {
+    slots_.assign(capacity, kNone);
+    for (std::size_t v = 0; v < keys_.size(); ++v) {
+      std::size_t slot = slotOf(keys_[v]);
+      while (slots_[slot] != kNone) slot = (slot + 1) & (slots_.size() - 1);
+      slots_[slot] = static_cast<std::uint32_t>(v);
+    }
+  }
+
+  KeyArray& keys_;
+  std::vector<std::uint32_t> slots_;
 };
 
 }  // namespace storey
