@@ -34,6 +34,7 @@ int runStoppable(const RunOptions& options) {
     config.input.read_ahead_scans = 0;
     config.backend.queue_scans = 0;
     config.map.export_threads = 1;
+    config.odometry.threads = 1;
   }
   std::string log_path = options.log_path;
   std::string ground_truth;  // the simulator's, when the built-in building is mapped

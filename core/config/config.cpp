@@ -43,6 +43,7 @@ void visitOdometry(V& v, OdometryConfig& c) {
   v.field("window_size", c.window_size);
   v.field("matching_rounds", c.matching_rounds);
   v.field("max_matched_planes", c.max_matched_planes);
+  v.field("threads", c.threads);
   v.field("max_iterations", c.max_iterations);
   v.field("neighbours", c.neighbours);
   v.field("max_neighbour_distance", c.max_neighbour_distance);

@@ -1,5 +1,7 @@
 #include "odometry/features.h"
 
+#include "common/parallel_chunks.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -185,15 +187,24 @@ void selectFeatures(const Scan& scan, const FeatureConfig& config, const Ring& r
 
 }  // namespace
 
-FeatureSet extractFeatures(const Scan& scan, const FeatureConfig& config) {
-  FeatureSet result;
-  std::vector<Eigen::Vector3f> edges, planes;
+FeatureSet extractFeatures(const Scan& scan, const FeatureConfig& config,
+                           const ParallelChunks* parallel) {
+  std::vector<std::vector<std::uint32_t>> rings = groupByRing(scan);
+  // Each ring on its own (in parallel when asked), joined in ring order: the
+  // same features whatever the number of threads.
+  struct RingFeatures {
+    std::vector<Eigen::Vector3f> edges, planes;
+    FeatureSet counts;
+  };
+  std::vector<RingFeatures> parts(rings.size());
   const int min_points = 2 * config.neighbours + 2;
-  for (std::vector<std::uint32_t>& indices : groupByRing(scan)) {
+  const auto extractRing = [&](std::size_t r) {
+    RingFeatures& part = parts[r];
+    std::vector<std::uint32_t>& indices = rings[r];
     if (static_cast<int>(indices.size()) < min_points) {
-      result.rejected[static_cast<std::size_t>(FeatureReject::kRingGap)] +=
+      part.counts.rejected[static_cast<std::size_t>(FeatureReject::kRingGap)] +=
           static_cast<std::int64_t>(indices.size());
-      continue;
+      return;
     }
     Ring ring;
     ring.index = std::move(indices);
@@ -204,8 +215,23 @@ FeatureSet extractFeatures(const Scan& scan, const FeatureConfig& config) {
     markUnreliable(scan, config, ring);
     computeSmoothness(scan, config, ring);
     for (std::uint8_t status : ring.status)
-      if (status != kEligible) ++result.rejected[status];
-    selectFeatures(scan, config, ring, edges, planes, result);
+      if (status != kEligible) ++part.counts.rejected[status];
+    selectFeatures(scan, config, ring, part.edges, part.planes, part.counts);
+  };
+  if (parallel != nullptr && parallel->threads() > 1) {
+    parallel->run(rings.size(), extractRing);
+  } else {
+    for (std::size_t r = 0; r < rings.size(); ++r) extractRing(r);
+  }
+  FeatureSet result;
+  std::vector<Eigen::Vector3f> edges, planes;
+  for (const RingFeatures& part : parts) {
+    edges.insert(edges.end(), part.edges.begin(), part.edges.end());
+    planes.insert(planes.end(), part.planes.begin(), part.planes.end());
+    for (std::size_t i = 0; i < result.rejected.size(); ++i)
+      result.rejected[i] += part.counts.rejected[i];
+    result.edge_candidates += part.counts.edge_candidates;
+    result.plane_candidates += part.counts.plane_candidates;
   }
   result.edges = voxelDownsample(edges, config.edge_voxel_size);
   result.planes = voxelDownsample(planes, config.plane_voxel_size);

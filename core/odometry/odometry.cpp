@@ -12,6 +12,7 @@
 
 #include "common/error.h"
 #include "common/log.h"
+#include "common/parallel_chunks.h"
 #include "common/stopwatch.h"
 #include "imu/imu_factor.h"
 #include "imu/imu_initializer.h"
@@ -111,7 +112,9 @@ LidarInertialOdometry::LidarInertialOdometry(const OdometryConfig& config,
       sensor_(sensor),
       time_offset_ns_(secondsToNs(sensor.time_offset_lidar_to_imu)),
       plane_map_(config.local_map),
-      edge_map_(config.local_map) {}
+      edge_map_(config.local_map) {
+  parallel_ = std::make_unique<ParallelChunks>(config_.threads);
+}
 
 LidarInertialOdometry::~LidarInertialOdometry() = default;
 
@@ -370,7 +373,7 @@ void LidarInertialOdometry::processScan(const Scan& scan) {
 
   // 3. Features.
   t = Clock::now();
-  const FeatureSet features = extractFeatures(frame->deskewed, cfg.features);
+  const FeatureSet features = extractFeatures(frame->deskewed, cfg.features, parallel_.get());
   frame->planes_imu = toImuFrame(features.planes, sensor_.T_imu_lidar);
   frame->edges_imu = toImuFrame(features.edges, sensor_.T_imu_lidar);
   frame->stats.plane_features = static_cast<std::int64_t>(features.planes.size());
@@ -419,9 +422,9 @@ void LidarInertialOdometry::optimise(Frame& newest) {
       thinned.empty() ? newest.planes_imu : thinned;
   for (int round = 0; round < std::max(cfg.matching_rounds, 1); ++round) {
     auto t = Clock::now();
-    newest.matches = matchFeatures(matched_planes, newest.edges_imu,
-                                   newest.blocks.toState(newest.state_ns).T_world_imu, plane_map_,
-                                   edge_map_, cfg, sensor_.T_imu_lidar.translation());
+    newest.matches = matchFeatures(
+        matched_planes, newest.edges_imu, newest.blocks.toState(newest.state_ns).T_world_imu,
+        plane_map_, edge_map_, cfg, sensor_.T_imu_lidar.translation(), parallel_.get());
     newest.stats.ms_matching += msSince(t);
 
     t = Clock::now();

@@ -35,6 +35,8 @@
 
 namespace storey {
 
+class ParallelChunks;
+
 /// What happened to one scan (summed into the run report).
 struct OdometryScanStats {
   std::int64_t points = 0;
@@ -153,6 +155,7 @@ class LidarInertialOdometry {
   std::vector<MotionInitScan> seed_scans_;
   std::vector<std::int64_t> seeded_ns_;
   std::deque<std::unique_ptr<Frame>> window_;
+  std::unique_ptr<ParallelChunks> parallel_;  ///< features and matching (config.threads)
   VoxelMap plane_map_;
   VoxelMap edge_map_;
   Eigen::Vector3d last_map_trim_position_ = Eigen::Vector3d::Zero();

@@ -11,6 +11,7 @@ void OdometryConfig::validate() const {
   const OdometryConfig& o = *this;
   requireKey(o.window_size >= 2, "odometry.window_size", "must be >= 2");
   requireKey(o.matching_rounds >= 1, "odometry.matching_rounds", "must be >= 1");
+  requireKey(o.threads >= 0, "odometry.threads", "must be >= 0 (0: every core)");
   requireKey(o.max_matched_planes >= 0, "odometry.max_matched_planes", "must be >= 0");
   requireKey(o.max_iterations >= 1, "odometry.max_iterations", "must be >= 1");
   requireKey(o.neighbours >= 3 && o.neighbours <= VoxelMap::kMaxNeighbours, "odometry.neighbours",

@@ -13,9 +13,11 @@ struct OdometryConfig {
   ImuInitConfig imu_init;
   ImuPreintegrationConfig preintegration;
 
-  int window_size = 3;                  ///< states optimised together (oldest held fixed) [>= 2]
-  int matching_rounds = 2;              ///< feature association rounds per scan [>= 1]
-  int max_iterations = 4;               ///< Ceres iterations per round [>= 1]
+  int window_size = 3;      ///< states optimised together (oldest held fixed) [>= 2]
+  int matching_rounds = 2;  ///< feature association rounds per scan [>= 1]
+  int max_iterations = 4;   ///< Ceres iterations per round [>= 1]
+  int threads = 0;          ///< threads for a scan's features and matching (0: every core; 1: the
+                            ///< odometry's own thread); the results are the same [>= 0]
   int max_matched_planes = 1500;        ///< planar features of a scan matched to the map: more are
                                         ///< thinned evenly (all still enter the map); 0: all [>= 0]
   int neighbours = 8;                   ///< map points used to fit a plane or a line [>= 3]

@@ -1,33 +1,45 @@
 #include "odometry/scan_matcher.h"
 
+#include "common/parallel_chunks.h"
+
+#include <algorithm>
 #include <cmath>
 
 namespace storey {
 
 const char* toString(MatchReject reason) {
   switch (reason) {
-    case MatchReject::kTooFewNeighbours: return "too few map neighbours";
-    case MatchReject::kNotPlanar: return "neighbours not planar";
-    case MatchReject::kNotALine: return "neighbours not a line";
-    case MatchReject::kTooFar: return "too far from plane or line";
-    case MatchReject::kOtherSide: return "seen from the other side of the plane";
-    case MatchReject::kCount: break;
+    case MatchReject::kTooFewNeighbours:
+      return "too few map neighbours";
+    case MatchReject::kNotPlanar:
+      return "neighbours not planar";
+    case MatchReject::kNotALine:
+      return "neighbours not a line";
+    case MatchReject::kTooFar:
+      return "too far from plane or line";
+    case MatchReject::kOtherSide:
+      return "seen from the other side of the plane";
+    case MatchReject::kCount:
+      break;
   }
   return "unknown";
 }
 
-MatchResult matchFeatures(const std::vector<Eigen::Vector3d>& planes_imu,
-                          const std::vector<Eigen::Vector3d>& edges_imu, const Pose& T_world_imu,
-                          const VoxelMap& plane_map, const VoxelMap& edge_map,
-                          const OdometryConfig& config, const Eigen::Vector3d& sensor_imu) {
-  MatchResult result;
-  const auto reject = [&](MatchReject reason) { ++result.rejected[static_cast<std::size_t>(reason)]; };
+namespace {
+
+/// Matches planar features [begin, end) into `result` (planes and rejects).
+void matchPlanes(const std::vector<Eigen::Vector3d>& planes_imu, std::size_t begin, std::size_t end,
+                 const Pose& T_world_imu, const VoxelMap& plane_map, const OdometryConfig& config,
+                 const Eigen::Vector3d& sensor_world, MatchResult& result) {
+  const auto reject = [&](MatchReject reason) {
+    ++result.rejected[static_cast<std::size_t>(reason)];
+  };
   const float max_neighbour = static_cast<float>(config.max_neighbour_distance);
   Eigen::Vector3f neighbours[VoxelMap::kMaxNeighbours];
   Eigen::Vector3f views[VoxelMap::kMaxNeighbours];
-  const Eigen::Vector3d sensor_world = T_world_imu * sensor_imu;
-  result.planes.reserve(planes_imu.size());
-  for (const Eigen::Vector3d& y : planes_imu) {
+  result.planes.reserve(result.planes.size() + (end - begin));
+  for (std::size_t f = begin; f < end; ++f) {
+    const Eigen::Vector3d& y = planes_imu[f];
     const Eigen::Vector3d x = T_world_imu * y;
     const int found =
         plane_map.nearest(x.cast<float>(), config.neighbours, max_neighbour, neighbours, views);
@@ -55,10 +67,47 @@ MatchResult matchFeatures(const std::vector<Eigen::Vector3d>& planes_imu,
     }
     result.planes.push_back({y, fit.normal, fit.d, std::hypot(config.point_sigma, fit.thickness)});
   }
+}
+
+}  // namespace
+
+MatchResult matchFeatures(const std::vector<Eigen::Vector3d>& planes_imu,
+                          const std::vector<Eigen::Vector3d>& edges_imu, const Pose& T_world_imu,
+                          const VoxelMap& plane_map, const VoxelMap& edge_map,
+                          const OdometryConfig& config, const Eigen::Vector3d& sensor_imu,
+                          const ParallelChunks* parallel) {
+  MatchResult result;
+  const auto reject = [&](MatchReject reason) {
+    ++result.rejected[static_cast<std::size_t>(reason)];
+  };
+  const float max_neighbour = static_cast<float>(config.max_neighbour_distance);
+  Eigen::Vector3f neighbours[VoxelMap::kMaxNeighbours];
+  const Eigen::Vector3d sensor_world = T_world_imu * sensor_imu;
+  // Planar features in chunks of a fixed size, joined in order: the same
+  // matches whatever the number of threads.
+  constexpr std::size_t kChunk = 256;
+  const std::size_t chunks = (planes_imu.size() + kChunk - 1) / kChunk;
+  if (parallel != nullptr && parallel->threads() > 1 && chunks > 1) {
+    std::vector<MatchResult> parts(chunks);
+    parallel->run(chunks, [&](std::size_t c) {
+      matchPlanes(planes_imu, c * kChunk, std::min(planes_imu.size(), (c + 1) * kChunk),
+                  T_world_imu, plane_map, config, sensor_world, parts[c]);
+    });
+    result.planes.reserve(planes_imu.size());
+    for (const MatchResult& part : parts) {
+      result.planes.insert(result.planes.end(), part.planes.begin(), part.planes.end());
+      for (std::size_t r = 0; r < result.rejected.size(); ++r)
+        result.rejected[r] += part.rejected[r];
+    }
+  } else {
+    matchPlanes(planes_imu, 0, planes_imu.size(), T_world_imu, plane_map, config, sensor_world,
+                result);
+  }
   result.lines.reserve(edges_imu.size());
   for (const Eigen::Vector3d& y : edges_imu) {
     const Eigen::Vector3d x = T_world_imu * y;
-    const int found = edge_map.nearest(x.cast<float>(), config.neighbours, max_neighbour, neighbours);
+    const int found =
+        edge_map.nearest(x.cast<float>(), config.neighbours, max_neighbour, neighbours);
     if (found < config.neighbours) {
       reject(MatchReject::kTooFewNeighbours);
       continue;
@@ -72,7 +121,8 @@ MatchResult matchFeatures(const std::vector<Eigen::Vector3d>& planes_imu,
       reject(MatchReject::kTooFar);
       continue;
     }
-    result.lines.push_back({y, fit.point, fit.direction, std::hypot(config.point_sigma, fit.thickness)});
+    result.lines.push_back(
+        {y, fit.point, fit.direction, std::hypot(config.point_sigma, fit.thickness)});
   }
   return result;
 }

@@ -13,6 +13,10 @@
 #include "types/pose.h"
 
 namespace storey {
+class ParallelChunks;
+}
+
+namespace storey {
 
 struct PlaneMatch {
   Eigen::Vector3d y_imu;    ///< feature point in the IMU frame [m]
@@ -56,10 +60,14 @@ struct MatchResult {
 /// (at `sensor_imu`, the LiDAR's position in the IMU frame) lies behind that
 /// plane is rejected (MatchReject::kOtherSide): it belongs to the other face
 /// of a slab or wall, a thickness away, not to this plane.
+///
+/// With `parallel`, the planar features are matched in chunks on its threads
+/// (the same result as on one thread).
 MatchResult matchFeatures(const std::vector<Eigen::Vector3d>& planes_imu,
                           const std::vector<Eigen::Vector3d>& edges_imu, const Pose& T_world_imu,
                           const VoxelMap& plane_map, const VoxelMap& edge_map,
                           const OdometryConfig& config,
-                          const Eigen::Vector3d& sensor_imu = Eigen::Vector3d::Zero());
+                          const Eigen::Vector3d& sensor_imu = Eigen::Vector3d::Zero(),
+                          const ParallelChunks* parallel = nullptr);
 
 }  // namespace storey

@@ -1,5 +1,7 @@
 #include "odometry/features.h"
 
+#include "common/parallel_chunks.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -32,7 +34,8 @@ double castRay(const Room& room, const Eigen::Vector3d& origin, const Eigen::Vec
     double t0 = 0.0, t1 = std::numeric_limits<double>::infinity();
     for (int a = 0; a < 3; ++a) {
       const double inv = 1.0 / dir[a];
-      double ta = (room.pillar_min[a] - origin[a]) * inv, tb = (room.pillar_max[a] - origin[a]) * inv;
+      double ta = (room.pillar_min[a] - origin[a]) * inv,
+             tb = (room.pillar_max[a] - origin[a]) * inv;
       if (ta > tb) std::swap(ta, tb);
       t0 = std::max(t0, ta);
       t1 = std::min(t1, tb);
@@ -65,7 +68,8 @@ Scan scanRoom(const Room& room, const Eigen::Vector3d& origin) {
 
 double distanceToRoomSurface(const Room& room, const Eigen::Vector3d& x) {
   double d = std::numeric_limits<double>::infinity();
-  for (int a = 0; a < 3; ++a) d = std::min({d, std::abs(x[a] - room.min[a]), std::abs(x[a] - room.max[a])});
+  for (int a = 0; a < 3; ++a)
+    d = std::min({d, std::abs(x[a] - room.min[a]), std::abs(x[a] - room.max[a])});
   if (room.has_pillar) {
     // distance to the pillar's surface for points outside it
     const Eigen::Vector3d c = x.cwiseMax(room.pillar_min).cwiseMin(room.pillar_max);
@@ -100,7 +104,8 @@ TEST(Features, PlanarPointsLieOnSurfacesAndEdgesNearCorners) {
   ASSERT_GT(features.planes.size(), 5000u);
   ASSERT_GT(features.edges.size(), 20u);
 
-  for (const auto& p : features.planes) ASSERT_LT(distanceToRoomSurface(room, p.cast<double>()), 1e-4);
+  for (const auto& p : features.planes)
+    ASSERT_LT(distanceToRoomSurface(room, p.cast<double>()), 1e-4);
   // Planar points are not at corners: their neighbourhood lies on one plane.
   int planes_at_vertical_edges = 0;
   for (const auto& p : features.planes)
@@ -111,7 +116,8 @@ TEST(Features, PlanarPointsLieOnSurfacesAndEdgesNearCorners) {
   int at_structure = 0;
   for (const auto& p : features.edges) {
     const Eigen::Vector3d x = p.cast<double>();
-    const double to_crease = std::min(std::abs(x.z() - room.min.z()), std::abs(x.z() - room.max.z()));
+    const double to_crease =
+        std::min(std::abs(x.z() - room.min.z()), std::abs(x.z() - room.max.z()));
     if (distanceToVerticalEdge(room, x) < 0.2 || to_crease < 0.2) ++at_structure;
   }
   EXPECT_GE(at_structure, static_cast<int>(0.9 * features.edges.size()))
@@ -127,6 +133,26 @@ TEST(Features, PlanarPointsLieOnSurfacesAndEdgesNearCorners) {
   }
   // The pillar occludes part of the far wall: the wall points beside its silhouette are rejected.
   EXPECT_GT(features.rejected[static_cast<int>(FeatureReject::kOccluded)], 16);
+}
+
+TEST(Features, TheSameFeaturesOnTwoThreadsAsOnOne) {
+  // Rings are processed in parallel and joined in ring order: same vectors.
+  Room room{{-3, -2.5, -1.2}, {5, 2.5, 1.8}, true, {1.5, -0.2, -1.2}, {1.9, 0.2, 1.8}};
+  const Scan scan = scanRoom(room, Eigen::Vector3d(0.3, -0.2, 0.1));
+  FeatureConfig config;
+  config.max_edges_per_sector = 20;
+  const ParallelChunks one(1), two(2);
+  const FeatureSet a = extractFeatures(scan, config, &one);
+  const FeatureSet b = extractFeatures(scan, config, &two);
+  const FeatureSet c = extractFeatures(scan, config);
+  ASSERT_GT(a.planes.size(), 100u);
+  ASSERT_GT(a.edges.size(), 10u);
+  EXPECT_EQ(a.planes, b.planes);
+  EXPECT_EQ(a.edges, b.edges);
+  EXPECT_EQ(a.rejected, b.rejected);
+  EXPECT_EQ(a.plane_candidates, b.plane_candidates);
+  EXPECT_EQ(a.edge_candidates, b.edge_candidates);
+  EXPECT_EQ(a.planes, c.planes);
 }
 
 TEST(Features, GrazingWallsOfALongCorridorAreRejectedAsParallelBeams) {

@@ -2,6 +2,8 @@
 
 #include "odometry/scan_matcher.h"
 
+#include "common/parallel_chunks.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -41,8 +43,12 @@ TEST(VoxelMap, CapacitySpacingAndRemoval) {
   config.min_point_spacing = 0.1;
   config.max_range = 10.0;
   VoxelMap map(config);
-  map.insert({{0.1f, 0.1f, 0.1f}, {0.15f, 0.1f, 0.1f}, {0.5f, 0.5f, 0.5f}, {0.7f, 0.7f, 0.7f},
-              {0.9f, 0.9f, 0.9f}, {20.5f, 0.5f, 0.5f}});
+  map.insert({{0.1f, 0.1f, 0.1f},
+              {0.15f, 0.1f, 0.1f},
+              {0.5f, 0.5f, 0.5f},
+              {0.7f, 0.7f, 0.7f},
+              {0.9f, 0.9f, 0.9f},
+              {20.5f, 0.5f, 0.5f}});
   EXPECT_EQ(map.pointCount(), 4u);  // one too close, one over capacity
   EXPECT_EQ(map.voxelCount(), 2u);
   map.removeFar(Eigen::Vector3d::Zero());
@@ -69,7 +75,6 @@ TEST(VoxelMap, PlaneAndLineFits) {
   EXPECT_FALSE(fitLine({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}}, 3.0).valid);
 }
 
-
 TEST(VoxelMap, KeepsViewDirectionsTowardsTheSensor) {
   VoxelMapConfig config;
   config.min_point_spacing = 0.0;
@@ -92,6 +97,44 @@ TEST(VoxelMap, KeepsViewDirectionsTowardsTheSensor) {
 // the neighbour radius of the underside's points, which fit a plane: without
 // the view directions it would be matched to the underside, a slab thickness
 // away (the odometry then slid down by the slab thickness at stair landings).
+TEST(ScanMatcher, TheSameMatchesOnTwoThreadsAsOnOne) {
+  // Planar features are matched in chunks of 256 joined in order: with more
+  // than one chunk, the same matches and rejects whatever the threads.
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> u(-4.0f, 4.0f);
+  VoxelMapConfig map_config;
+  VoxelMap plane_map(map_config), edge_map(map_config);
+  std::vector<Eigen::Vector3f> map_points;
+  for (int i = 0; i < 20000; ++i) {
+    const float a = u(rng), b = u(rng);
+    map_points.emplace_back(a, b, 0.0f);             // floor
+    map_points.emplace_back(a, 4.0f, b);             // wall
+    map_points.emplace_back(a, b, 0.3f * a + 2.0f);  // slanted roof
+  }
+  plane_map.insert(map_points, Eigen::Vector3d(0, 0, 1));
+  std::vector<Eigen::Vector3d> features;
+  for (int i = 0; i < 1500; ++i)
+    features.emplace_back(u(rng), u(rng), i % 3 == 0 ? 0.01 : (i % 3 == 1 ? 1.0 : 3.0));
+  OdometryConfig config;
+  const Pose T(Eigen::Quaterniond(Eigen::AngleAxisd(0.01, Eigen::Vector3d::UnitZ())),
+               Eigen::Vector3d(0.02, -0.01, 0.0));
+  const ParallelChunks one(1), two(2);
+  const MatchResult a =
+      matchFeatures(features, {}, T, plane_map, edge_map, config, Eigen::Vector3d::Zero(), &one);
+  const MatchResult b =
+      matchFeatures(features, {}, T, plane_map, edge_map, config, Eigen::Vector3d::Zero(), &two);
+  ASSERT_GT(a.planes.size(), 300u);
+  ASSERT_EQ(a.planes.size(), b.planes.size());
+  for (std::size_t i = 0; i < a.planes.size(); ++i) {
+    EXPECT_EQ(a.planes[i].y_imu, b.planes[i].y_imu) << i;
+    EXPECT_EQ(a.planes[i].n_world, b.planes[i].n_world) << i;
+    EXPECT_EQ(a.planes[i].d_world, b.planes[i].d_world) << i;
+    EXPECT_EQ(a.planes[i].sigma, b.planes[i].sigma) << i;
+  }
+  EXPECT_EQ(a.rejected, b.rejected);
+  EXPECT_GT(a.rejected[static_cast<std::size_t>(MatchReject::kTooFewNeighbours)], 0);
+}
+
 TEST(ScanMatcher, RejectsPointsSeenFromTheOtherSideOfASlab) {
   std::vector<Eigen::Vector3f> underside;
   for (int i = -3; i <= 3; ++i)
