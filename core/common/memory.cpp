@@ -1,5 +1,7 @@
 #include "common/memory.h"
 
+#include <algorithm>
+#include <atomic>
 #include <fstream>
 #include <string>
 
@@ -15,7 +17,9 @@ void returnFreedMemory() {
 #endif
 }
 
-double peakResidentMiB() {
+namespace {
+
+double readPeakResidentMiB() {
   std::ifstream status("/proc/self/status");
   std::string key;
   while (status >> key) {
@@ -27,6 +31,20 @@ double peakResidentMiB() {
     std::getline(status, key);
   }
   return -1.0;
+}
+
+}  // namespace
+
+double peakResidentMiB() {
+  // The kernel counts resident pages per thread and adds them up lazily, so
+  // with several threads two readings of VmHWM can dip by a few pages: the
+  // highest reading so far is the peak.
+  static std::atomic<double> highest{-1.0};
+  const double now = readPeakResidentMiB();
+  double seen = highest.load();
+  while (now > seen && !highest.compare_exchange_weak(seen, now)) {
+  }
+  return std::max(now, seen);
 }
 
 }  // namespace storey

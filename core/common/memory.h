@@ -11,7 +11,8 @@ namespace storey {
 void returnFreedMemory();
 
 /// The process's peak resident size so far [MiB] (Linux: VmHWM of
-/// /proc/self/status); -1 where unknown.
+/// /proc/self/status, the highest reading so far: with several threads
+/// the kernel's figure can dip by a few pages); -1 where unknown.
 double peakResidentMiB();
 
 }  // namespace storey
