@@ -296,9 +296,9 @@ SrpExtractionResult extractSrps(const std::vector<Eigen::Vector3f>& all_points,
       inlier_index.clear();
       for (std::size_t j = 0; j < distance.size(); ++j) {
         if (!(std::abs(distance[j]) <= config.ransac_distance)) continue;
-        const std::uint32_t i = unexplained.index[j];
-        inliers.push_back(points[i].cast<double>());
-        inlier_index.push_back(i);
+        // The coordinates already widened to double (exactly: float -> double).
+        inliers.emplace_back(unexplained.x[j], unexplained.y[j], unexplained.z[j]);
+        inlier_index.push_back(unexplained.index[j]);
       }
       if (inliers.size() < 3) break;
       plane = fitPlane(inliers, config);
