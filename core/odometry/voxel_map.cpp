@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "types/voxel_hash.h"
+
 namespace storey {
 
 VoxelMap::VoxelMap(const VoxelMapConfig& config)
@@ -15,9 +17,7 @@ VoxelMap::VoxelMap(const VoxelMapConfig& config)
 
 namespace {
 std::size_t slotOfKey(std::uint64_t key, std::size_t mask) {
-  std::uint64_t h = key * 0x9E3779B97F4A7C15ull;
-  h ^= h >> 29;
-  return static_cast<std::size_t>(h) & mask;
+  return static_cast<std::size_t>(voxelHash(key)) & mask;
 }
 }  // namespace
 

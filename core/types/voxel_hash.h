@@ -29,10 +29,18 @@ inline std::uint64_t voxelKey(const Eigen::Vector3d& p, double inverse_size) {
                    static_cast<std::int64_t>(std::floor(p.z() * inverse_size)));
 }
 
-/// The hash of a packed voxel key (Fibonacci multiply, high bits folded down).
+/// The hash of a packed voxel key: MurmurHash3's 64-bit finaliser, so every
+/// bit of all three coordinates reaches the low bits a table's slot is taken
+/// from. (A single Fibonacci multiply with the high bits folded down left the
+/// x coordinate, the key's top bits, out of the slot of any table under 2^22
+/// slots: scans' voxels along x then shared probe chains.)
 inline std::uint64_t voxelHash(std::uint64_t key) {
-  std::uint64_t h = key * 0x9E3779B97F4A7C15ull;
-  h ^= h >> 29;
+  std::uint64_t h = key;
+  h ^= h >> 33;
+  h *= 0xFF51AFD7ED558CCDull;
+  h ^= h >> 33;
+  h *= 0xC4CEB9FE1A85EC53ull;
+  h ^= h >> 33;
   return h;
 }
 
