@@ -81,8 +81,10 @@ class Backend {
   /// time (LiDAR frame).
   virtual BackendDecision addScan(double time, const Pose& T_odom_lidar,
                                   const Eigen::Quaterniond& q_world_odom, const Scan& deskewed) = 0;
-  /// End of the log: the last scan becomes a keyframe, final solve.
-  virtual SlamResult finish() = 0;
+  /// End of the log: the last scan (the one given to the last addScan,
+  /// `last_deskewed`) becomes a keyframe if it is not one yet; final solve.
+  /// The back end keeps no copy of a scan that is no keyframe.
+  virtual SlamResult finish(const Scan& last_deskewed) = 0;
 };
 
 /// The SRP back end when config.srp, else the odometry-only one. The config

@@ -12,7 +12,7 @@ BackendDecision OdometryBackend::addScan(double time, const Pose& T_odom_lidar,
   return {last_is_keyframe_, T_world_lidar};
 }
 
-SlamResult OdometryBackend::finish() {
+SlamResult OdometryBackend::finish(const Scan&) {
   if (!last_is_keyframe_ && !odometry_.empty()) keyframes_.push_back(odometry_.size() - 1);
   last_is_keyframe_ = true;
   // One levelling, the odometry's last (best) gravity estimate, for every pose.

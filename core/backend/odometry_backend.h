@@ -13,7 +13,7 @@ class OdometryBackend : public Backend {
   /// finish() levels every pose with the last levelling.
   BackendDecision addScan(double time, const Pose& T_odom_lidar,
                           const Eigen::Quaterniond& q_world_odom, const Scan& deskewed) override;
-  SlamResult finish() override;
+  SlamResult finish(const Scan& last_deskewed) override;
 
  private:
   KeyframeSelector selector_;

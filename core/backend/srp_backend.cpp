@@ -61,8 +61,16 @@ struct SrpBackend::Impl {
   Pose T_world_odom;
   // The odometry's latest levelling of its map frame (its gravity estimate).
   Eigen::Quaterniond q_world_odom = Eigen::Quaterniond::Identity();
-  std::vector<Eigen::Vector3f> last_points;  // the newest scan when it is no keyframe
+  std::vector<Eigen::Vector3f> keyframe_points;  // a keyframe's scan for the extraction
+  bool last_is_keyframe = false;                 // the newest scan
   Pose last_T_world_lidar;
+
+  void processKeyframe(const Scan& deskewed, const Pose& T_world_lidar) {
+    keyframe_points.clear();
+    keyframe_points.reserve(deskewed.points.size());
+    for (const ScanPoint& p : deskewed.points) keyframe_points.push_back(p.p);
+    processKeyframe(keyframe_points, T_world_lidar);
+  }
   BackendStats stats;
   bool finished = false;
 
@@ -300,23 +308,22 @@ BackendDecision SrpBackend::addScan(double time, const Pose& T_odom_lidar,
   const Pose T_world_lidar = m.T_world_odom * T_odom_lidar;
   m.scans.push_back({time, T_odom_lidar});
   ++m.stats.scans;
-  m.last_points.clear();
-  m.last_points.reserve(deskewed.points.size());
-  for (const ScanPoint& p : deskewed.points) m.last_points.push_back(p.p);
   m.last_T_world_lidar = T_world_lidar;
-  if (!m.isKeyframe(T_world_lidar, time)) return {false, T_world_lidar};
-  m.processKeyframe(m.last_points, T_world_lidar);
-  m.last_points.clear();
-  return {true, T_world_lidar};
+  m.last_is_keyframe = m.isKeyframe(T_world_lidar, time);
+  if (m.last_is_keyframe) m.processKeyframe(deskewed, T_world_lidar);
+  return {m.last_is_keyframe, T_world_lidar};
 }
 
-SlamResult SrpBackend::finish() {
+SlamResult SrpBackend::finish(const Scan& last_deskewed) {
   Impl& m = *impl_;
   if (m.finished) throw Error("internal: SrpBackend::finish called twice");
   m.finished = true;
   // The last scan becomes a keyframe too, so the end of the log is constrained.
-  if (!m.last_points.empty()) m.processKeyframe(m.last_points, m.last_T_world_lidar);
-  std::vector<Eigen::Vector3f>().swap(m.last_points);
+  if (!m.last_is_keyframe && !last_deskewed.points.empty()) {
+    m.processKeyframe(last_deskewed, m.last_T_world_lidar);
+    m.last_is_keyframe = true;
+  }
+  std::vector<Eigen::Vector3f>().swap(m.keyframe_points);
   const auto t = Clock::now();
   m.levelFirstKeyframe();
   if (m.config.graph.final_iterations > 0 && m.graph.observations() > 0)

@@ -33,7 +33,7 @@ class SrpBackend : public Backend {
                           const Eigen::Quaterniond& q_world_odom, const Scan& deskewed) override;
   /// The last scan as a keyframe, the final whole-graph solve and the
   /// wrong-association count. Call once.
-  SlamResult finish() override;
+  SlamResult finish(const Scan& last_deskewed) override;
 
  private:
   struct Impl;

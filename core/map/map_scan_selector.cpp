@@ -16,28 +16,24 @@ void MapScanSelector::add(const Scan& deskewed, const Pose& T_world_lidar, std::
   T_world_last_map_scan_ = T_world_lidar;
 }
 
-void MapScanSelector::addScan(Scan deskewed, const Pose& T_world_lidar, bool keyframe) {
+void MapScanSelector::addScan(const Scan& deskewed, const Pose& T_world_lidar, bool keyframe) {
   const std::size_t scan_index = scans_++;
   if (keyframe) ++keyframes_;
   if (!builder_) return;
   const Pose step = T_world_last_map_scan_.inverse() * T_world_lidar;
   last_in_map_ = keyframe || step.translation().norm() > config_.scan_spacing ||
                  Eigen::AngleAxisd(step.rotation()).angle() > config_.scan_angle_deg * M_PI / 180.0;
-  if (last_in_map_) {
+  if (last_in_map_)
     add(deskewed, T_world_lidar, scan_index);
-    last_scan_.points.clear();
-  } else {
-    last_scan_ = std::move(deskewed);
+  else
     T_world_last_scan_ = T_world_lidar;
-  }
 }
 
-void MapScanSelector::finish() {
+void MapScanSelector::finish(const Scan& last_deskewed) {
   if (!builder_ || scans_ == 0 || last_in_map_) return;
   ++keyframes_;  // the last scan is a keyframe (it was not one, or it would be in the map)
-  add(last_scan_, T_world_last_scan_, scans_ - 1);
+  add(last_deskewed, T_world_last_scan_, scans_ - 1);
   last_in_map_ = true;
-  Scan().points.swap(last_scan_.points);
 }
 
 void MapScanSelector::release() {

@@ -24,10 +24,11 @@ class MapScanSelector {
 
   /// The next scan of the log (scan index = its place in the trajectory),
   /// with the back end's pose and keyframe decision.
-  void addScan(Scan deskewed, const Pose& T_world_lidar, bool keyframe);
-  /// End of the log: the last scan becomes the last keyframe and enters the
-  /// map if it is not there yet.
-  void finish();
+  void addScan(const Scan& deskewed, const Pose& T_world_lidar, bool keyframe);
+  /// End of the log: the last scan (the one given to the last addScan,
+  /// `last_deskewed`) becomes the last keyframe and enters the map if it is
+  /// not there yet.
+  void finish(const Scan& last_deskewed);
 
   bool enabled() const { return builder_ != nullptr; }
   /// The scans kept (null when the map is off).
@@ -47,7 +48,6 @@ class MapScanSelector {
   int keyframes_ = 0;      ///< keyframes seen
   Pose T_world_last_map_scan_;
   bool last_in_map_ = false;
-  Scan last_scan_;  ///< the newest scan while it is not in the map
   Pose T_world_last_scan_;
 };
 

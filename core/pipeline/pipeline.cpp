@@ -39,10 +39,11 @@ PipelineResult runPipeline(const std::string& log_path, const Config& config,
   ScanTimings timings;
 
   // Odometry per scan, back end per keyframe, map scans chosen: one pass.
-  streamLog(log_path, *reader, *odometry, *backend, map_scans, report, timings,
-            config.backend.queue_scans, progress, log_time);
+  Scan last_scan = streamLog(log_path, *reader, *odometry, *backend, map_scans, report, timings,
+                             config.backend.queue_scans, progress, log_time);
   if (progress && !progress(1.0, "back end: final optimisation")) throw Cancelled();
-  SlamResult slam = backend->finish();
+  SlamResult slam = backend->finish(last_scan);
+  Scan().points.swap(last_scan.points);
   report.setInput(log_path, reader->stats(), odometry->drops());
   const TimeOffsetEstimate time_offset = odometry->timeOffset();
   if (time_offset.detected()) {

@@ -11,29 +11,32 @@ namespace storey {
 
 namespace {
 
-/// One final odometry result through the back end into the map selection.
+/// One final odometry result through the back end into the map selection;
+/// its deskewed scan is moved into `last_scan`.
 void passOn(OdometryResult& scan, Backend& backend, MapScanSelector& map_scans,
-            RunReportBuilder& report, ScanTimings& timings) {
+            RunReportBuilder& report, ScanTimings& timings, Scan& last_scan) {
   report.addScan(scan);
   const double time = scan.deskewed.time();
   const Stopwatch backend_watch;
   const BackendDecision decision =
       backend.addScan(time, scan.T_odom_lidar, scan.q_world_odom, scan.deskewed);
   timings.add(time, scan.stats.ms_total, decision.keyframe, 1e3 * backend_watch.seconds());
-  map_scans.addScan(std::move(scan.deskewed), decision.T_world_lidar, decision.keyframe);
+  map_scans.addScan(scan.deskewed, decision.T_world_lidar, decision.keyframe);
+  last_scan = std::move(scan.deskewed);
 }
 
 }  // namespace
 
-void streamLog(const std::string& log_path, LogReader& reader, LidarInertialOdometry& odometry,
+Scan streamLog(const std::string& log_path, LogReader& reader, LidarInertialOdometry& odometry,
                Backend& backend, MapScanSelector& map_scans, RunReportBuilder& report,
                ScanTimings& timings, int queue_scans, const ProgressFn& progress,
                const LogTimeFn& log_time) {
   // The back end and the map scan selection on a thread of their own: only
   // the odometry's results go to it, nothing comes back.
+  Scan last_scan;  // written by the back end's thread, read after it finished
   OrderedWorker<OdometryResult> backend_thread(
       static_cast<std::size_t>(std::max(queue_scans, 0)),
-      [&](OdometryResult& scan) { passOn(scan, backend, map_scans, report, timings); });
+      [&](OdometryResult& scan) { passOn(scan, backend, map_scans, report, timings, last_scan); });
   std::size_t scans = 0;
   OdometryResult result;
   auto drain = [&] {
@@ -70,7 +73,8 @@ void streamLog(const std::string& log_path, LogReader& reader, LidarInertialOdom
     throw Error(log_path + ": no scan could be processed (" + std::to_string(reader.stats().scans) +
                 " scans read)");
   }
-  map_scans.finish();
+  map_scans.finish(last_scan);
+  return last_scan;
 }
 
 }  // namespace storey
