@@ -11,6 +11,7 @@
 #include <deque>
 #include <unordered_set>
 
+#include "backend/analytic_factors.h"
 #include "backend/factors.h"
 #include "backend/plane_math.h"
 #include "common/error.h"
@@ -37,7 +38,8 @@ struct PlaneGraph::Impl {
   };
   struct Observation {
     int kf, plane;
-    std::unique_ptr<ceres::CostFunction> cost;
+    PlaneObservationFactor factor;
+    std::unique_ptr<ceres::CostFunction> cost;  ///< factor's, with the keyframe pose free
   };
 
   GraphConfig config;
@@ -112,8 +114,8 @@ void PlaneGraph::addRelativePose(int a, int b, const Pose& T_a_b,
   if (a < 0 || b <= a || b >= keyframes()) throw Error("PlaneGraph: bad relative pose keyframes");
   const int index = static_cast<int>(impl_->edges.size());
   impl_->edges.push_back({a, b,
-                          std::unique_ptr<ceres::CostFunction>(
-                              RelativePoseFactor::create(T_a_b, sqrtInformation<6>(information)))});
+                          std::make_unique<RelativePoseCost>(
+                              RelativePoseFactor(T_a_b, sqrtInformation<6>(information)))});
   impl_->kfs[static_cast<std::size_t>(b)].edges.push_back(index);
   impl_->kfs[static_cast<std::size_t>(a)].edges.push_back(index);
 }
@@ -142,10 +144,9 @@ int PlaneGraph::addObservation(int kf, int plane, const Eigen::Vector3d& n_kf, d
     throw Error("PlaneGraph: observation of an unknown keyframe or plane");
   const int index = static_cast<int>(impl_->observations.size());
   const Eigen::Matrix3d information = covariance.inverse();
+  const PlaneObservationFactor factor(n_kf.normalized(), d_kf, sqrtInformation<3>(information));
   impl_->observations.push_back(
-      {kf, plane,
-       std::unique_ptr<ceres::CostFunction>(PlaneObservationFactor::create(
-           n_kf.normalized(), d_kf, sqrtInformation<3>(information)))});
+      {kf, plane, factor, std::make_unique<PlaneObservationCost>(factor)});
   impl_->kfs[static_cast<std::size_t>(kf)].observations.push_back(index);
   impl_->planes[static_cast<std::size_t>(plane)].observations.push_back(index);
   return index;
@@ -160,6 +161,8 @@ GraphSolveStats PlaneGraph::optimise(int window, int max_iterations) {
   const int first_free = window > 0 && n > window ? n - window : 0;
   stats.full = first_free == 0;
 
+  std::vector<std::unique_ptr<ceres::CostFunction>>
+      held_costs;  // outlive `problem`: declared first
   ceres::Problem::Options options;
   options.cost_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
   options.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
@@ -202,9 +205,17 @@ GraphSolveStats PlaneGraph::optimise(int window, int max_iterations) {
         ++stats.held_observations_left_out;
         continue;
       }
-      g.addKeyframeBlocks(problem, obs.kf, obs.kf < first_free);
       Impl::Keyframe& k = g.kfs[static_cast<std::size_t>(obs.kf)];
-      problem.AddResidualBlock(obs.cost.get(), &g.plane_loss, k.q, k.t, l.n, l.d);
+      if (obs.kf < first_free) {
+        // Held keyframe: its pose is a constant of a plane-only factor.
+        held_costs.emplace_back(new HeldPlaneObservationFactor(
+            obs.factor, Eigen::Quaterniond(k.q[3], k.q[0], k.q[1], k.q[2]).toRotationMatrix(),
+            Eigen::Vector3d(k.t[0], k.t[1], k.t[2])));
+        problem.AddResidualBlock(held_costs.back().get(), &g.plane_loss, l.n, l.d);
+      } else {
+        g.addKeyframeBlocks(problem, obs.kf, false);
+        problem.AddResidualBlock(obs.cost.get(), &g.plane_loss, k.q, k.t, l.n, l.d);
+      }
       ++stats.residual_blocks;
     }
   }

@@ -9,6 +9,7 @@
 #include <memory>
 #include <random>
 
+#include "backend/analytic_factors.h"
 #include "backend/factors.h"
 #include "types/plane.h"
 
@@ -39,12 +40,14 @@ TEST(PlaneFactor, JacobiansMatchNumericOnManifolds) {
     const Plane plane_world(Eigen::Vector3d::Random(), 2.0 + trial * 0.3);
     // Observation: the true plane in the keyframe, slightly perturbed.
     const Plane truth_kf = plane_world.transformed(T_world_kf.inverse());
-    const Eigen::Vector3d n_obs = (truth_kf.normal() + 0.02 * Eigen::Vector3d::Random()).normalized();
+    const Eigen::Vector3d n_obs =
+        (truth_kf.normal() + 0.02 * Eigen::Vector3d::Random()).normalized();
     std::unique_ptr<ceres::CostFunction> cost(
         PlaneObservationFactor::create(n_obs, truth_kf.distance() + 0.05, randomSqrtInfo(rng)));
     const Eigen::Quaterniond& q = T_world_kf.rotation();
     double qv[4] = {q.x(), q.y(), q.z(), q.w()};
-    double tv[3] = {T_world_kf.translation().x(), T_world_kf.translation().y(), T_world_kf.translation().z()};
+    double tv[3] = {T_world_kf.translation().x(), T_world_kf.translation().y(),
+                    T_world_kf.translation().z()};
     Eigen::Vector3d n = plane_world.normal();
     double nv[3] = {n.x(), n.y(), n.z()};
     double dv[1] = {plane_world.distance()};
@@ -79,14 +82,142 @@ TEST(PlaneFactor, ZeroResidualAtTheTruePlaneAndAgreesWithPlaneTransform) {
   }
 }
 
+// The analytic cost functions the graph uses: the reference functors'
+// residuals, their automatic derivatives, and numeric ones on the manifolds.
+void expectSameEvaluation(const ceres::CostFunction& analytic, const ceres::CostFunction& reference,
+                          const std::vector<std::vector<double>>& parameter_values) {
+  const int residuals = analytic.num_residuals();
+  const std::vector<std::int32_t>& sizes = analytic.parameter_block_sizes();
+  std::vector<const double*> params;
+  for (const auto& p : parameter_values) params.push_back(p.data());
+  std::vector<double> r_a(residuals), r_b(residuals);
+  std::vector<std::vector<double>> J_a, J_b;
+  std::vector<double*> jac_a, jac_b;
+  for (std::int32_t size : sizes) {
+    J_a.emplace_back(static_cast<std::size_t>(residuals * size));
+    J_b.emplace_back(static_cast<std::size_t>(residuals * size));
+  }
+  for (std::size_t i = 0; i < sizes.size(); ++i) {
+    jac_a.push_back(J_a[i].data());
+    jac_b.push_back(J_b[i].data());
+  }
+  ASSERT_TRUE(analytic.Evaluate(params.data(), r_a.data(), jac_a.data()));
+  ASSERT_TRUE(reference.Evaluate(params.data(), r_b.data(), jac_b.data()));
+  for (int i = 0; i < residuals; ++i)
+    EXPECT_NEAR(r_a[static_cast<std::size_t>(i)], r_b[static_cast<std::size_t>(i)], 1e-11);
+  for (std::size_t b = 0; b < sizes.size(); ++b)
+    for (std::size_t k = 0; k < J_a[b].size(); ++k)
+      EXPECT_NEAR(J_a[b][k], J_b[b][k], 1e-10) << "parameter block " << b << ", entry " << k;
+  std::vector<double> r_only(static_cast<std::size_t>(residuals));
+  ASSERT_TRUE(analytic.Evaluate(params.data(), r_only.data(), nullptr));
+  EXPECT_EQ(r_only, r_a);
+}
+
+TEST(PlaneObservationCost, EqualsTheAutomaticDerivativesAndNumericOnManifolds) {
+  std::mt19937 rng(13);
+  ceres::EigenQuaternionManifold quaternion;
+  ceres::SphereManifold<3> sphere;
+  const std::vector<const ceres::Manifold*> manifolds{&quaternion, nullptr, &sphere, nullptr};
+  for (int trial = 0; trial < 30; ++trial) {
+    const Pose T_world_kf = randomPose(rng);
+    const PlaneObservationFactor factor(Eigen::Vector3d::Random().normalized(), 0.5 + 0.3 * trial,
+                                        randomSqrtInfo(rng));
+    const PlaneObservationCost analytic(factor);
+    const ceres::AutoDiffCostFunction<PlaneObservationFactor, 3, 4, 3, 3, 1> reference(
+        new PlaneObservationFactor(factor));
+    const Eigen::Quaterniond& q = T_world_kf.rotation();
+    const Eigen::Vector3d& t = T_world_kf.translation();
+    const Eigen::Vector3d n = Eigen::Vector3d::Random().normalized();
+    const std::vector<std::vector<double>> values{
+        {q.x(), q.y(), q.z(), q.w()}, {t.x(), t.y(), t.z()}, {n.x(), n.y(), n.z()}, {trial - 10.0}};
+    expectSameEvaluation(analytic, reference, values);
+    const double* params[] = {values[0].data(), values[1].data(), values[2].data(),
+                              values[3].data()};
+    ceres::GradientChecker checker(&analytic, &manifolds, ceres::NumericDiffOptions());
+    ceres::GradientChecker::ProbeResults results;
+    EXPECT_TRUE(checker.Probe(params, 1e-7, &results)) << results.error_log;
+  }
+}
+
+TEST(RelativePoseCost, EqualsTheAutomaticDerivativesAndNumericOnManifolds) {
+  std::mt19937 rng(17);
+  ceres::EigenQuaternionManifold quaternion;
+  const std::vector<const ceres::Manifold*> manifolds{&quaternion, nullptr, &quaternion, nullptr};
+  std::uniform_real_distribution<double> u(-0.2, 0.2);
+  for (int trial = 0; trial < 30; ++trial) {
+    const Pose a = randomPose(rng), b = randomPose(rng), measured = randomPose(rng);
+    Eigen::Matrix<double, 6, 6> L = Eigen::Matrix<double, 6, 6>::Identity() * 20.0;
+    for (int r = 0; r < 6; ++r)
+      for (int c = r + 1; c < 6; ++c) L(r, c) = u(rng);
+    const RelativePoseFactor factor(measured, L);
+    const RelativePoseCost analytic(factor);
+    const ceres::AutoDiffCostFunction<RelativePoseFactor, 6, 4, 3, 4, 3> reference(
+        new RelativePoseFactor(factor));
+    const Eigen::Quaterniond &qa = a.rotation(), &qb = b.rotation();
+    const std::vector<std::vector<double>> values{
+        {qa.x(), qa.y(), qa.z(), qa.w()},
+        {a.translation().x(), a.translation().y(), a.translation().z()},
+        {qb.x(), qb.y(), qb.z(), qb.w()},
+        {b.translation().x(), b.translation().y(), b.translation().z()}};
+    expectSameEvaluation(analytic, reference, values);
+    const double* params[] = {values[0].data(), values[1].data(), values[2].data(),
+                              values[3].data()};
+    ceres::GradientChecker checker(&analytic, &manifolds, ceres::NumericDiffOptions());
+    ceres::GradientChecker::ProbeResults results;
+    EXPECT_TRUE(checker.Probe(params, 1e-7, &results)) << results.error_log;
+  }
+}
+
+// A held keyframe's observation (plane-only, analytic) is the full factor with
+// the pose fixed: the same residual and the same Jacobians for the plane.
+TEST(HeldPlaneObservationFactor, EqualsTheFullFactorWithThePoseHeld) {
+  std::mt19937 rng(11);
+  for (int trial = 0; trial < 20; ++trial) {
+    const Pose T_world_kf = randomPose(rng);
+    const Eigen::Vector3d n_obs = Eigen::Vector3d::Random().normalized();
+    const PlaneObservationFactor observation(n_obs, 1.0 + 0.2 * trial, randomSqrtInfo(rng));
+    std::unique_ptr<ceres::CostFunction> full(
+        new ceres::AutoDiffCostFunction<PlaneObservationFactor, 3, 4, 3, 3, 1>(
+            new PlaneObservationFactor(observation)));
+    const HeldPlaneObservationFactor held(observation, T_world_kf.rotationMatrix(),
+                                          T_world_kf.translation());
+    const Eigen::Quaterniond& q = T_world_kf.rotation();
+    double qv[4] = {q.x(), q.y(), q.z(), q.w()};
+    double tv[3] = {T_world_kf.translation().x(), T_world_kf.translation().y(),
+                    T_world_kf.translation().z()};
+    const Eigen::Vector3d n = Eigen::Vector3d::Random().normalized();
+    double nv[3] = {n.x(), n.y(), n.z()};
+    double dv[1] = {3.0 * (trial % 5) - 4.0};
+    const double* full_params[] = {qv, tv, nv, dv};
+    const double* held_params[] = {nv, dv};
+    double r_full[3], r_held[3];
+    double Jq[12], Jt[9], Jn_full[9], Jd_full[3], Jn_held[9], Jd_held[3];
+    double* full_jacobians[] = {Jq, Jt, Jn_full, Jd_full};
+    double* held_jacobians[] = {Jn_held, Jd_held};
+    ASSERT_TRUE(full->Evaluate(full_params, r_full, full_jacobians));
+    ASSERT_TRUE(held.Evaluate(held_params, r_held, held_jacobians));
+    for (int i = 0; i < 3; ++i) {
+      EXPECT_NEAR(r_held[i], r_full[i], 1e-12);
+      EXPECT_NEAR(Jd_held[i], Jd_full[i], 1e-12);
+    }
+    for (int i = 0; i < 9; ++i) EXPECT_NEAR(Jn_held[i], Jn_full[i], 1e-12);
+    // Residual only, no Jacobians asked for.
+    double r_only[3];
+    ASSERT_TRUE(held.Evaluate(held_params, r_only, nullptr));
+    for (int i = 0; i < 3; ++i) EXPECT_EQ(r_only[i], r_held[i]);
+  }
+}
+
 TEST(RelativePoseFactor, JacobiansMatchNumericOnManifolds) {
   std::mt19937 rng(11);
   ceres::EigenQuaternionManifold quaternion;
   const std::vector<const ceres::Manifold*> manifolds{&quaternion, nullptr, &quaternion, nullptr};
   for (int trial = 0; trial < 20; ++trial) {
     const Pose a = randomPose(rng), b = randomPose(rng);
-    const Pose measured = (a.inverse() * b) * Pose(Eigen::Quaterniond(Eigen::AngleAxisd(0.05, Eigen::Vector3d(1, 2, 3).normalized())),
-                                                   Eigen::Vector3d(0.02, -0.01, 0.03));
+    const Pose measured =
+        (a.inverse() * b) *
+        Pose(Eigen::Quaterniond(Eigen::AngleAxisd(0.05, Eigen::Vector3d(1, 2, 3).normalized())),
+             Eigen::Vector3d(0.02, -0.01, 0.03));
     Eigen::Matrix<double, 6, 6> L = Eigen::Matrix<double, 6, 6>::Identity() * 10.0;
     L(0, 4) = 0.5;
     std::unique_ptr<ceres::CostFunction> cost(RelativePoseFactor::create(measured, L));
