@@ -189,18 +189,26 @@ struct UnexplainedPoints {
     }
   }
 
-  /// distance[j] = the signed distance of point j from the plane n.p = d, in
-  /// double precision: (n_x x + n_y y) + n_z z - d, as Eigen's n.dot(p) - d.
-  void distances(const Eigen::Vector3d& n, double d, std::vector<double>& out) const {
+  /// The points within `threshold` of the plane n.p = d (their positions j
+  /// here, in order) into `out`. The signed distance in double precision is
+  /// (n_x x + n_y y) + n_z z - d, as Eigen's n.dot(p) - d.
+  void within(const Eigen::Vector3d& n, double d, double threshold,
+              std::vector<std::uint32_t>& out) const {
     out.resize(x.size());
     const double nx = n.x(), ny = n.y(), nz = n.z();
-    // Restrict pointers and no comparison in the loop: it vectorises.
     const double* __restrict px = x.data();
     const double* __restrict py = y.data();
     const double* __restrict pz = z.data();
-    double* __restrict o = out.data();
+    std::uint32_t* __restrict o = out.data();
     const std::size_t count = x.size();
-    for (std::size_t j = 0; j < count; ++j) o[j] = (nx * px[j] + ny * py[j]) + nz * pz[j] - d;
+    std::size_t kept = 0;
+    // Branch-free: every j is written, the count only grows for an inlier.
+    for (std::size_t j = 0; j < count; ++j) {
+      const double distance = (nx * px[j] + ny * py[j]) + nz * pz[j] - d;
+      o[kept] = static_cast<std::uint32_t>(j);
+      kept += std::abs(distance) <= threshold ? 1 : 0;
+    }
+    out.resize(kept);
   }
 
   /// Removes the points that became explained (keeping the order).
@@ -265,12 +273,16 @@ SrpExtractionResult extractSrps(const std::vector<Eigen::Vector3f>& all_points,
     VoxelIndex seen(points.size() / 4 + 16);
     const float inv = static_cast<float>(1.0 / config.voxel_size);
     bool inserted = false;
+    std::uint64_t previous = ~std::uint64_t{0};  // no packed key (63 bits)
     for (std::size_t i = 0; i < points.size(); ++i) {
       const Eigen::Vector3f& p = points[i];
-      seen.findOrInsert(packVoxel(static_cast<std::int64_t>(std::floor(p.x() * inv)),
-                                  static_cast<std::int64_t>(std::floor(p.y() * inv)),
-                                  static_cast<std::int64_t>(std::floor(p.z() * inv))),
-                        inserted);
+      const std::uint64_t key = packVoxel(static_cast<std::int64_t>(std::floor(p.x() * inv)),
+                                          static_cast<std::int64_t>(std::floor(p.y() * inv)),
+                                          static_cast<std::int64_t>(std::floor(p.z() * inv)));
+      // Neighbours in scan order often share a voxel: no lookup for those.
+      if (key == previous) continue;
+      previous = key;
+      seen.findOrInsert(key, inserted);
       if (inserted) subsample.push_back(static_cast<int>(i));
     }
   }
@@ -282,7 +294,7 @@ SrpExtractionResult extractSrps(const std::vector<Eigen::Vector3f>& all_points,
   std::vector<DetectedPlane> accepted;
   std::vector<Eigen::Vector3d> inliers;
   std::vector<std::uint32_t> inlier_index;
-  std::vector<double> distance;
+  std::vector<std::uint32_t> within;
   for (int k = 0; k < config.max_detected_planes; ++k) {
     if (static_cast<double>(explained_count) >= target) break;
     Eigen::Vector3d n;
@@ -291,11 +303,10 @@ SrpExtractionResult extractSrps(const std::vector<Eigen::Vector3f>& all_points,
     // Refine on the full-resolution points (two rounds of inliers + least squares).
     DetectedPlane plane;
     for (int round = 0; round < 2; ++round) {
-      unexplained.distances(n, d, distance);
+      unexplained.within(n, d, config.ransac_distance, within);
       inliers.clear();
       inlier_index.clear();
-      for (std::size_t j = 0; j < distance.size(); ++j) {
-        if (!(std::abs(distance[j]) <= config.ransac_distance)) continue;
+      for (std::uint32_t j : within) {
         // The coordinates already widened to double (exactly: float -> double).
         inliers.emplace_back(unexplained.x[j], unexplained.y[j], unexplained.z[j]);
         inlier_index.push_back(unexplained.index[j]);
