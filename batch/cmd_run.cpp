@@ -56,8 +56,11 @@ int runStoppable(const RunOptions& options) {
                            (std::filesystem::path(sim_dir) / sim::kCalibrationFile).string());
   }
   ProgressBar bar("run");
-  const PipelineResult result = runPipeline(log_path, config, options.out_dir,
-                                            stoppable(bar.callback()), bar.logTimeCallback());
+  // Only the report is kept: the map and the rest are freed before the
+  // renders, which read the written files (peak memory, issue 23).
+  const std::string report_json = runPipeline(log_path, config, options.out_dir,
+                                              stoppable(bar.callback()), bar.logTimeCallback())
+                                      .report_json;
   bar.done();
   if (config.render.enabled) {
     // The SLAM outputs are written: a render failure is only a warning here.
@@ -79,7 +82,7 @@ int runStoppable(const RunOptions& options) {
                 << options.out_dir << "`)\n";
     }
   }
-  std::cout << "storey run: finished\n" << summariseRun(result.report_json, options.out_dir).text();
+  std::cout << "storey run: finished\n" << summariseRun(report_json, options.out_dir).text();
   return 0;
 }
 
