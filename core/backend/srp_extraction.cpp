@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <utility>
 
 #include "backend/plane_hull.h"
 #include "backend/plane_math.h"
@@ -41,13 +42,25 @@ DetectedPlane fitPlane(const std::vector<Eigen::Vector3d>& inliers,
   DetectedPlane out;
   const double count = static_cast<double>(inliers.size());
   const Eigen::Vector3d o = inliers.front();
-  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-  Eigen::Matrix3d sum_sq = Eigen::Matrix3d::Zero();
+  // The six distinct entries of the symmetric sum (each the same products in
+  // the same order as the full outer product's).
+  double sx = 0.0, sy = 0.0, sz = 0.0, sxx = 0.0, sxy = 0.0, sxz = 0.0, syy = 0.0, syz = 0.0,
+         szz = 0.0;
   for (const auto& p : inliers) {
-    const Eigen::Vector3d q = p - o;
-    sum += q;
-    sum_sq.noalias() += q * q.transpose();
+    const double x = p.x() - o.x(), y = p.y() - o.y(), z = p.z() - o.z();
+    sx += x;
+    sy += y;
+    sz += z;
+    sxx += x * x;
+    sxy += x * y;
+    sxz += x * z;
+    syy += y * y;
+    syz += y * z;
+    szz += z * z;
   }
+  const Eigen::Vector3d sum(sx, sy, sz);
+  Eigen::Matrix3d sum_sq;
+  sum_sq << sxx, sxy, sxz, sxy, syy, syz, sxz, syz, szz;
   const Eigen::Vector3d mean_q = sum / count;
   const Eigen::Matrix3d cov = sum_sq / count - mean_q * mean_q.transpose();
   const Eigen::Vector3d c = o + mean_q;
@@ -292,6 +305,7 @@ SrpExtractionResult extractSrps(const std::vector<Eigen::Vector3f>& all_points,
   std::size_t explained_count = 0;
   const double target = config.explained_fraction * static_cast<double>(points.size());
   std::vector<DetectedPlane> accepted;
+  std::vector<std::vector<Eigen::Vector3d>> accepted_inliers;
   std::vector<Eigen::Vector3d> inliers;
   std::vector<std::uint32_t> inlier_index;
   std::vector<std::uint32_t> within;
@@ -336,18 +350,23 @@ SrpExtractionResult extractSrps(const std::vector<Eigen::Vector3f>& all_points,
       ++result.rejects[static_cast<int>(PlaneReject::kEdgeOn)];
       continue;
     }
-    plane.hull = planeHull(inliers, plane.plane);
     accepted.push_back(plane);
+    accepted_inliers.push_back(std::move(inliers));  // for the hull, if it becomes an SRP
+    inliers = {};
   }
   result.explained_fraction =
       static_cast<double>(explained_count) / static_cast<double>(points.size());
 
-  // The SRPs: the largest planes whose normals are nearly orthogonal to each other.
-  std::stable_sort(
-      accepted.begin(), accepted.end(),
-      [](const DetectedPlane& a, const DetectedPlane& b) { return a.points > b.points; });
+  // The SRPs: the largest planes whose normals are nearly orthogonal to each
+  // other; only they get their outline.
+  std::vector<std::size_t> by_size(accepted.size());
+  for (std::size_t i = 0; i < by_size.size(); ++i) by_size[i] = i;
+  std::stable_sort(by_size.begin(), by_size.end(), [&](std::size_t a, std::size_t b) {
+    return accepted[a].points > accepted[b].points;
+  });
   const double max_dot = std::sin(config.orthogonal_tolerance_deg * M_PI / 180.0);
-  for (const DetectedPlane& plane : accepted) {
+  for (std::size_t i : by_size) {
+    DetectedPlane& plane = accepted[i];
     bool orthogonal = true;
     for (const DetectedPlane& srp : result.srps)
       if (std::abs(srp.plane.normal().dot(plane.plane.normal())) > max_dot) orthogonal = false;
@@ -356,7 +375,8 @@ SrpExtractionResult extractSrps(const std::vector<Eigen::Vector3f>& all_points,
     } else if (static_cast<int>(result.srps.size()) >= config.max_srps) {
       ++result.rejects[static_cast<int>(PlaneReject::kBeyondMaxSrps)];
     } else {
-      result.srps.push_back(plane);
+      plane.hull = planeHull(accepted_inliers[i], plane.plane);
+      result.srps.push_back(std::move(plane));
     }
   }
   return result;
