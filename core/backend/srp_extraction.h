@@ -21,7 +21,7 @@ struct DetectedPlane {
   double extent = 0.0;          ///< 4 std of the inliers along their second axis [m]
   Eigen::Vector3d centroid = Eigen::Vector3d::Zero();  ///< of the inliers [m]
   /// Outline: convex hull of the inliers on the plane (backend/plane_hull.h);
-  /// filled for the planes that pass the size rules (SRP candidates) [m].
+  /// filled for the SRPs [m].
   std::vector<Eigen::Vector3d> hull;
   /// Covariance of (a1, a2, d): n' = normalise(n + B (a1, a2)), d' = d + dd, with
   /// B = tangentBasis(n) [rad^2, rad m, m^2].
