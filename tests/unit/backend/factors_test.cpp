@@ -85,7 +85,8 @@ TEST(PlaneFactor, ZeroResidualAtTheTruePlaneAndAgreesWithPlaneTransform) {
 // The analytic cost functions the graph uses: the reference functors'
 // residuals, their automatic derivatives, and numeric ones on the manifolds.
 void expectSameEvaluation(const ceres::CostFunction& analytic, const ceres::CostFunction& reference,
-                          const std::vector<std::vector<double>>& parameter_values) {
+                          const std::vector<std::vector<double>>& parameter_values,
+                          const std::vector<const ceres::Manifold*>& manifolds) {
   const int residuals = analytic.num_residuals();
   const std::vector<std::int32_t>& sizes = analytic.parameter_block_sizes();
   std::vector<const double*> params;
@@ -111,6 +112,9 @@ void expectSameEvaluation(const ceres::CostFunction& analytic, const ceres::Cost
   std::vector<double> r_only(static_cast<std::size_t>(residuals));
   ASSERT_TRUE(analytic.Evaluate(params.data(), r_only.data(), nullptr));
   EXPECT_EQ(r_only, r_a);
+  ceres::GradientChecker checker(&analytic, &manifolds, ceres::NumericDiffOptions());
+  ceres::GradientChecker::ProbeResults results;
+  EXPECT_TRUE(checker.Probe(params.data(), 1e-7, &results)) << results.error_log;
 }
 
 TEST(PlaneObservationCost, EqualsTheAutomaticDerivativesAndNumericOnManifolds) {
@@ -130,12 +134,7 @@ TEST(PlaneObservationCost, EqualsTheAutomaticDerivativesAndNumericOnManifolds) {
     const Eigen::Vector3d n = Eigen::Vector3d::Random().normalized();
     const std::vector<std::vector<double>> values{
         {q.x(), q.y(), q.z(), q.w()}, {t.x(), t.y(), t.z()}, {n.x(), n.y(), n.z()}, {trial - 10.0}};
-    expectSameEvaluation(analytic, reference, values);
-    const double* params[] = {values[0].data(), values[1].data(), values[2].data(),
-                              values[3].data()};
-    ceres::GradientChecker checker(&analytic, &manifolds, ceres::NumericDiffOptions());
-    ceres::GradientChecker::ProbeResults results;
-    EXPECT_TRUE(checker.Probe(params, 1e-7, &results)) << results.error_log;
+    expectSameEvaluation(analytic, reference, values, manifolds);
   }
 }
 
@@ -159,12 +158,7 @@ TEST(RelativePoseCost, EqualsTheAutomaticDerivativesAndNumericOnManifolds) {
         {a.translation().x(), a.translation().y(), a.translation().z()},
         {qb.x(), qb.y(), qb.z(), qb.w()},
         {b.translation().x(), b.translation().y(), b.translation().z()}};
-    expectSameEvaluation(analytic, reference, values);
-    const double* params[] = {values[0].data(), values[1].data(), values[2].data(),
-                              values[3].data()};
-    ceres::GradientChecker checker(&analytic, &manifolds, ceres::NumericDiffOptions());
-    ceres::GradientChecker::ProbeResults results;
-    EXPECT_TRUE(checker.Probe(params, 1e-7, &results)) << results.error_log;
+    expectSameEvaluation(analytic, reference, values, manifolds);
   }
 }
 
