@@ -203,42 +203,74 @@ struct UnexplainedPoints {
   }
 
   /// The points within `threshold` of the plane n.p = d (their positions j
-  /// here, in order) into `out`. The signed distance in double precision is
-  /// (n_x x + n_y y) + n_z z - d, as Eigen's n.dot(p) - d.
+  /// here, in order) into `out`.
   void within(const Eigen::Vector3d& n, double d, double threshold,
               std::vector<std::uint32_t>& out) const {
     out.resize(x.size());
-    const double nx = n.x(), ny = n.y(), nz = n.z();
-    const double* __restrict px = x.data();
-    const double* __restrict py = y.data();
-    const double* __restrict pz = z.data();
     std::uint32_t* __restrict o = out.data();
-    const std::size_t count = x.size();
     std::size_t kept = 0;
-    // Branch-free: every j is written, the count only grows for an inlier.
-    for (std::size_t j = 0; j < count; ++j) {
-      const double distance = (nx * px[j] + ny * py[j]) + nz * pz[j] - d;
-      o[kept] = static_cast<std::uint32_t>(j);
-      kept += std::abs(distance) <= threshold ? 1 : 0;
-    }
+    forEachBlock(n, d, threshold, [&](std::size_t base, std::size_t m, const std::int64_t* inside) {
+      // Branch-free: every j is written, the count only grows for an inlier.
+      for (std::size_t j = 0; j < m; ++j) {
+        o[kept] = static_cast<std::uint32_t>(base + j);
+        kept += static_cast<std::size_t>(inside[j]);
+      }
+    });
     out.resize(kept);
   }
 
-  /// Removes the points that became explained (keeping the order).
-  void drop(const std::vector<char>& explained) {
+  /// within() and then the removal of those points, in one pass: the points
+  /// within `threshold` of the plane leave the arrays (the others keep their
+  /// order); their coordinates go to `inliers` and their scan indices to
+  /// `inlier_index`, in order.
+  void extract(const Eigen::Vector3d& n, double d, double threshold,
+               std::vector<Eigen::Vector3d>& inliers, std::vector<std::uint32_t>& inlier_index) {
+    inliers.clear();
+    inlier_index.clear();
     std::size_t kept = 0;
-    for (std::size_t j = 0; j < index.size(); ++j) {
-      if (explained[index[j]]) continue;
-      x[kept] = x[j];
-      y[kept] = y[j];
-      z[kept] = z[j];
-      index[kept] = index[j];
-      ++kept;
-    }
+    forEachBlock(n, d, threshold, [&](std::size_t base, std::size_t m, const std::int64_t* inside) {
+      for (std::size_t j = base; j < base + m; ++j) {
+        if (inside[j - base]) {
+          inliers.emplace_back(x[j], y[j], z[j]);
+          inlier_index.push_back(index[j]);
+        } else {
+          x[kept] = x[j];
+          y[kept] = y[j];
+          z[kept] = z[j];
+          index[kept] = index[j];
+          ++kept;
+        }
+      }
+    });
     x.resize(kept);
     y.resize(kept);
     z.resize(kept);
     index.resize(kept);
+  }
+
+ private:
+  /// The inlier test over blocks of points: for each block, inside[j] = 1
+  /// when |distance| <= threshold, else 0, then visit(base, count, inside).
+  /// The signed distance in double precision is (n_x x + n_y y) + n_z z - d,
+  /// as Eigen's n.dot(p) - d; the test loop has no data-dependent branch or
+  /// store, so it vectorises (two points per SSE2 instruction).
+  template <typename Visit>
+  void forEachBlock(const Eigen::Vector3d& n, double d, double threshold, Visit&& visit) const {
+    constexpr std::size_t kBlock = 512;
+    alignas(16) std::int64_t inside[kBlock];
+    const double nx = n.x(), ny = n.y(), nz = n.z();
+    const std::size_t count = x.size();
+    for (std::size_t base = 0; base < count; base += kBlock) {
+      const std::size_t m = std::min(kBlock, count - base);
+      const double* __restrict px = x.data() + base;
+      const double* __restrict py = y.data() + base;
+      const double* __restrict pz = z.data() + base;
+      for (std::size_t j = 0; j < m; ++j) {
+        const double distance = (nx * px[j] + ny * py[j]) + nz * pz[j] - d;
+        inside[j] = std::abs(distance) <= threshold ? 1 : 0;
+      }
+      visit(base, m, inside);
+    }
   }
 };
 
@@ -315,15 +347,21 @@ SrpExtractionResult extractSrps(const std::vector<Eigen::Vector3f>& all_points,
     double d = 0.0;
     if (!ransacPlane(points, subsample, config, n, d)) break;
     // Refine on the full-resolution points (two rounds of inliers + least squares).
+    // The second round's inliers are the plane's points: they leave the
+    // unexplained points in the same pass that finds them.
     DetectedPlane plane;
     for (int round = 0; round < 2; ++round) {
-      unexplained.within(n, d, config.ransac_distance, within);
-      inliers.clear();
-      inlier_index.clear();
-      for (std::uint32_t j : within) {
-        // The coordinates already widened to double (exactly: float -> double).
-        inliers.emplace_back(unexplained.x[j], unexplained.y[j], unexplained.z[j]);
-        inlier_index.push_back(unexplained.index[j]);
+      if (round == 0) {
+        unexplained.within(n, d, config.ransac_distance, within);
+        inliers.clear();
+        inlier_index.clear();
+        for (std::uint32_t j : within) {
+          // The coordinates already widened to double (exactly: float -> double).
+          inliers.emplace_back(unexplained.x[j], unexplained.y[j], unexplained.z[j]);
+          inlier_index.push_back(unexplained.index[j]);
+        }
+      } else {
+        unexplained.extract(n, d, config.ransac_distance, inliers, inlier_index);
       }
       if (inliers.size() < 3) break;
       plane = fitPlane(inliers, config);
@@ -334,7 +372,6 @@ SrpExtractionResult extractSrps(const std::vector<Eigen::Vector3f>& all_points,
     for (std::size_t i : inlier_index) explained[i] = 1;
     explained_count += inlier_index.size();
     dropExplained(subsample, explained);
-    unexplained.drop(explained);
     result.detected.push_back(plane);
     if (plane.points < config.min_points) {
       ++result.rejects[static_cast<int>(PlaneReject::kTooFewPoints)];
