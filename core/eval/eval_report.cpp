@@ -79,6 +79,8 @@ std::string evaluationJson(const EvaluationResult& result) {
     ate.push_back({{"alignment", toString(a.alignment)},
                    {"translation_m", statsJson(a.translation)},
                    {"rotation_rad", statsJson(a.rotation)},
+                   {"vertical_m", statsJson(a.vertical)},
+                   {"tilt_rad", statsJson(a.tilt)},
                    {"T_gt_est", poseJson(a.T_gt_est)}});
   root["ate"] = ate;
   json rpe = json::array();
@@ -170,12 +172,12 @@ std::string evaluationTable(const EvaluationResult& result) {
       "%.1f s, %.1f m of true path\n\n",
       t.matched, t.est_poses, t.outside_gt_span, t.in_gt_gap, t.matched_duration, t.gt_path_length);
 
-  out += format("%-19s %9s %9s %9s %9s %9s\n", "ATE", "rmse m", "mean m", "median m", "max m",
-                "rot deg");
+  out += format("%-19s %9s %9s %9s %9s %9s %9s %9s\n", "ATE", "rmse m", "mean m", "median m",
+                "max m", "rot deg", "z max m", "tilt mrad");
   for (const AteResult& a : t.ate)
-    out += format("  %-17s %9.4f %9.4f %9.4f %9.4f %9.3f\n", toString(a.alignment),
+    out += format("  %-17s %9.4f %9.4f %9.4f %9.4f %9.3f %9.4f %9.2f\n", toString(a.alignment),
                   a.translation.rmse, a.translation.mean, a.translation.median, a.translation.max,
-                  a.rotation.rmse * kDegPerRad);
+                  a.rotation.rmse * kDegPerRad, a.vertical.max, a.tilt.rmse * 1e3);
 
   out += format("\n%-19s %9s %9s %9s %9s %9s\n", "RPE", "segments", "trans %", "median",
                 "rot deg/m", "median");

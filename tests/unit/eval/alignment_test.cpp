@@ -65,6 +65,34 @@ TEST(EvalAlignment, YawTranslationRecoversAYawOffsetButNotARoll) {
   EXPECT_LT(absoluteTrajectoryError(rolled, Alignment::kSe3).translation.rmse, 1e-9);
 }
 
+/// The gravity parts of the error: a world yaw and a sideways shift give no
+/// tilt and no height error; the same truth with every pose turned by 5 mrad
+/// about a horizontal world axis and lifted by 2 cm gives exactly that tilt
+/// and height.
+TEST(EvalAte, TiltAndHeightErrorsSeeOnlyWhatGravitySees) {
+  const Trajectory gt = wigglyWalk(100);
+  const AteResult yawed = absoluteTrajectoryError(
+      transformed(gt, yawPose(0.4, Eigen::Vector3d(0.3, -0.2, 0.0))), Alignment::kNone);
+  EXPECT_GT(yawed.rotation.max, 0.39);
+  EXPECT_LT(yawed.tilt.max, 1e-12);
+  EXPECT_LT(yawed.vertical.max, 1e-12);
+
+  AssociatedPoses tilted;
+  const Eigen::Quaterniond turn(Eigen::AngleAxisd(0.005, Eigen::Vector3d(1, 1, 0).normalized()));
+  for (const StampedPose& s : gt) {
+    tilted.times.push_back(s.time);
+    tilted.T_world_gt.push_back(s.pose);
+    tilted.T_world_est.push_back(
+        Pose(turn * s.pose.rotation(), s.pose.translation() + Eigen::Vector3d(0, 0, 0.02)));
+  }
+  tilted.est_poses = gt.size();
+  const AteResult a = absoluteTrajectoryError(tilted, Alignment::kNone);
+  EXPECT_EQ(a.tilt.count, 100u);
+  EXPECT_NEAR(a.tilt.median, 0.005, 1e-9);
+  EXPECT_NEAR(a.tilt.max, 0.005, 1e-9);
+  EXPECT_NEAR(a.vertical.max, 0.02, 1e-12);
+}
+
 TEST(EvalAlignment, NeedsTwoPairsOfTheSameCount) {
   EXPECT_THROW(alignSe3({Eigen::Vector3d::Zero()}, {Eigen::Vector3d::Zero()}), Error);
   EXPECT_THROW(
