@@ -156,11 +156,12 @@ void readBenchRow(const std::string& seed_dir, BenchRow& row) {
     row.wrong_matches = numberAt(*planes, {"planes", "off_their_plane_not_down_weighted"});
 }
 
-std::string seedRecordJson(const BenchRow& row, double max_duration) {
+std::string seedRecordJson(const BenchRow& row, double max_duration, const std::string& config) {
   return Json{{"format", "storey-bench-seed"},
               {"version", 1},
               {"seed", row.seed},
               {"max_duration_s", max_duration},
+              {"config", config},
               {"error", row.error.empty() ? Json(nullptr) : Json(row.error)},
               {"peak_memory_mb", jsonOf(row.peak_memory_mb)}}
              .dump(2) +
@@ -168,7 +169,7 @@ std::string seedRecordJson(const BenchRow& row, double max_duration) {
 }
 
 bool readSeedRecord(const std::string& seed_dir, std::uint64_t seed, double max_duration,
-                    BenchRow& row) {
+                    const std::string& config, BenchRow& row) {
   const std::optional<Json> record = readJson(fs::path(seed_dir) / "seed.json");
   if (!record || record->value("format", "") != "storey-bench-seed") return false;
   const Json& s = (*record)["seed"];
@@ -176,6 +177,8 @@ bool readSeedRecord(const std::string& seed_dir, std::uint64_t seed, double max_
   if (!s.is_number_unsigned() || s.get<std::uint64_t>() != seed || !duration ||
       *duration != max_duration)
     return false;
+  const Json& recorded_config = record->contains("config") ? (*record)["config"] : Json("");
+  if (!recorded_config.is_string() || recorded_config.get<std::string>() != config) return false;
   BenchRow kept;
   kept.seed = seed;
   if ((*record)["error"].is_string()) kept.error = (*record)["error"].get<std::string>();

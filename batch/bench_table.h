@@ -63,16 +63,18 @@ Distribution distributionOf(const std::vector<std::optional<double>>& values,
                             bool higher_is_better = false);
 
 /// What a finished seed leaves in its folder as seed.json: the parts of its row
-/// that its own files do not hold (peak memory, the failed step's error) and the
-/// --duration it ran with, so that `storey bench --resume` can keep the seed.
-std::string seedRecordJson(const BenchRow& row, double max_duration);
+/// that its own files do not hold (peak memory, the failed step's error), the
+/// --duration and the configuration's text (-c; "" = defaults) it ran with, so
+/// that `storey bench --resume` can keep the seed.
+std::string seedRecordJson(const BenchRow& row, double max_duration, const std::string& config);
 
 /// Reads a seed folder that a finished seed left: true, and `row` filled as
 /// readBenchRow does plus the record's peak memory and error, when
 /// seed_dir/seed.json is that seed's record written with the same
-/// `max_duration`; false (row untouched) otherwise.
+/// `max_duration` and `config` (a record without one ran with the defaults);
+/// false (row untouched) otherwise.
 bool readSeedRecord(const std::string& seed_dir, std::uint64_t seed, double max_duration,
-                    BenchRow& row);
+                    const std::string& config, BenchRow& row);
 
 std::string benchMarkdown(const std::vector<BenchRow>& rows, const std::string& title);
 std::string benchJson(const std::vector<BenchRow>& rows);

@@ -201,7 +201,7 @@ int main(int argc, char** argv) {
   BenchOptions bench;
   auto* bench_cmd = app.add_subcommand(
       "bench",
-      "benchmark on random buildings: simulate random:SEED, map it with default settings, "
+      "benchmark on random buildings: simulate random:SEED, map it with default settings (or -c), "
       "evaluate; one table with a row per seed and the distributions (docs/benchmarks.md)");
   bench_cmd->add_option("--seeds", bench.seeds, "seeds: 1-30, 1,4,9 or 1-10,1001-1010")
       ->capture_default_str();
@@ -217,7 +217,10 @@ int main(int argc, char** argv) {
   bench_cmd->add_flag("--keep", bench.keep, "keep every seed's bag, mesh and map");
   bench_cmd->add_flag("--resume", bench.resume,
                       "keep the seeds that an earlier bench into the same folder finished "
-                      "(with the same --duration) and run only the others");
+                      "(with the same --duration and configuration) and run only the others");
+  bench_cmd->add_option("-c,--config", bench.config,
+                        "map every seed with this configuration (YAML, as `storey run -c`) "
+                        "instead of the defaults");
 
   BatchOptions batch;
   auto* batch_cmd = app.add_subcommand(

@@ -21,6 +21,8 @@
 #include "commands.h"
 #include "common/atomic_file.h"
 #include "common/error.h"
+#include "common/yaml_section.h"
+#include "config/config.h"
 #include "progress_bar.h"
 
 namespace storey::cli {
@@ -71,6 +73,15 @@ int runBench(const BenchOptions& options) {
   const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
   const int jobs = options.jobs > 0 ? options.jobs : static_cast<int>(cores);
   const int threads = std::max(1, static_cast<int>(cores) / jobs);
+  // -c: checked before anything is written or run (a wrong key fails here, once), then
+  // passed to every seed's `storey run`; its text goes into each seed's record.
+  std::string config_path, config_text;
+  if (!options.config.empty()) {
+    loadRunConfig(options.config, "");
+    config_path = fs::absolute(options.config).string();
+    config_text = readTextFile(options.config);
+  }
+
   std::error_code ec;
   fs::create_directories(options.out_dir, ec);
   if (ec) throw Error(options.out_dir + ": cannot create the folder: " + ec.message());
@@ -89,7 +100,8 @@ int runBench(const BenchOptions& options) {
       BenchRow& row = rows[i];
       row.seed = seeds[i];
       const fs::path dir = fs::path(options.out_dir) / ("seed-" + std::to_string(row.seed));
-      if (options.resume && readSeedRecord(dir.string(), row.seed, options.max_duration, row)) {
+      if (options.resume &&
+          readSeedRecord(dir.string(), row.seed, options.max_duration, config_text, row)) {
         std::lock_guard<std::mutex> lock(print);
         ++done;
         bar.print("bench: [" + std::to_string(done) + "/" + std::to_string(seeds.size()) +
@@ -110,11 +122,17 @@ int runBench(const BenchOptions& options) {
                                         std::to_string(threads)};
       if (options.max_duration > 0.0)
         simulate.insert(simulate.end(), {"--duration", fixed(options.max_duration, 3)});
+      std::vector<std::string> map{"run",
+                                   sim + "/simulation.bag",
+                                   "--calibration",
+                                   sim + "/calibration.yaml",
+                                   "-o",
+                                   run,
+                                   "--no-render"};
+      if (!config_path.empty()) map.insert(map.end(), {"-c", config_path});
       const std::vector<std::pair<std::string, std::vector<std::string>>> steps{
           {"simulate", simulate},
-          {"run",
-           {"run", sim + "/simulation.bag", "--calibration", sim + "/calibration.yaml", "-o", run,
-            "--no-render"}},
+          {"run", map},
           {"eval",
            {"eval", "--gt", sim + "/groundtruth_lidar.tum", "--est", run + "/trajectory.tum",
             "--storeys", sim + "/storeys.yaml", "--mesh", sim + "/building.ply", "--map",
@@ -139,7 +157,8 @@ int runBench(const BenchOptions& options) {
       }
       readBenchRow(dir.string(), row);
       // Written last: the seed is finished (what --resume keeps).
-      writeFileAtomically((dir / "seed.json").string(), seedRecordJson(row, options.max_duration));
+      writeFileAtomically((dir / "seed.json").string(),
+                          seedRecordJson(row, options.max_duration, config_text));
       if (!options.keep) {
         // The bulky files; the spec, the reports and the logs stay.
         for (const char* bulky :
@@ -158,7 +177,8 @@ int runBench(const BenchOptions& options) {
   for (int j = 0; j < jobs; ++j) workers.emplace_back(work);
   for (std::thread& t : workers) t.join();
 
-  const std::string title = "storey bench --seeds " + options.seeds;
+  const std::string title = "storey bench --seeds " + options.seeds +
+                            (options.config.empty() ? "" : " -c " + options.config);
   writeFileAtomically((fs::path(options.out_dir) / "benchmark.md").string(),
                       benchMarkdown(rows, title));
   writeFileAtomically((fs::path(options.out_dir) / "benchmark.json").string(), benchJson(rows));

@@ -91,6 +91,26 @@ TEST(BenchCli, OneShortSeedEndToEnd) {
   EXPECT_EQ(std::filesystem::last_write_time(out + "/seed-18/sim/spec.yaml"), spec_time);
   std::ifstream again(out + "/benchmark.json");
   EXPECT_EQ(nlohmann::json::parse(again)["seeds"][0], row);
+
+  // -c: every seed mapped with that configuration; --resume does not keep a
+  // seed that ran with another one.
+  const std::string config = (dir.path() / "window.yaml").string();
+  {
+    std::ofstream file(config);
+    file << "backend:\n  graph:\n    window_keyframes: 10\n";
+  }
+  const test::RunResult configured =
+      test::runStorey("bench --seeds 18 --jobs 1 --duration 12 --resume -o " +
+                          test::shellQuoted(out) + " -c " + test::shellQuoted(config),
+                      dir.path().string());
+  ASSERT_EQ(configured.exit_code, 0) << configured.err;
+  EXPECT_EQ(configured.err.find("(kept from an earlier run)"), std::string::npos) << configured.err;
+  std::ifstream md(out + "/benchmark.md");
+  const std::string table((std::istreambuf_iterator<char>(md)), std::istreambuf_iterator<char>());
+  EXPECT_NE(table.find(" -c " + config), std::string::npos) << table;
+  std::ifstream record(out + "/seed-18/seed.json");
+  EXPECT_EQ(nlohmann::json::parse(record)["config"],
+            "backend:\n  graph:\n    window_keyframes: 10\n");
 }
 
 TEST(BenchTable, ASeedRecordIsKeptOnlyForItsSeedAndDuration) {
@@ -101,13 +121,15 @@ TEST(BenchTable, ASeedRecordIsKeptOnlyForItsSeedAndDuration) {
   row.error = "run: storey: error: it broke";
   {
     std::ofstream out(dir.path() / "seed.json");
-    out << seedRecordJson(row, 12.0);
+    out << seedRecordJson(row, 12.0, "");
   }
   BenchRow kept;
-  EXPECT_FALSE(readSeedRecord(dir.path().string(), 8, 12.0, kept)) << "another seed's record";
-  EXPECT_FALSE(readSeedRecord(dir.path().string(), 7, 0.0, kept)) << "another --duration";
+  EXPECT_FALSE(readSeedRecord(dir.path().string(), 8, 12.0, "", kept)) << "another seed's record";
+  EXPECT_FALSE(readSeedRecord(dir.path().string(), 7, 0.0, "", kept)) << "another --duration";
+  EXPECT_FALSE(readSeedRecord(dir.path().string(), 7, 12.0, "a: 1\n", kept))
+      << "another configuration";
   EXPECT_EQ(kept.seed, 0u) << "a record not kept leaves the row alone";
-  ASSERT_TRUE(readSeedRecord(dir.path().string(), 7, 12.0, kept));
+  ASSERT_TRUE(readSeedRecord(dir.path().string(), 7, 12.0, "", kept));
   EXPECT_EQ(kept.seed, 7u);
   EXPECT_EQ(kept.error, "run: storey: error: it broke");
   EXPECT_EQ(kept.peak_memory_mb, 321.0);
@@ -115,7 +137,38 @@ TEST(BenchTable, ASeedRecordIsKeptOnlyForItsSeedAndDuration) {
     std::ofstream out(dir.path() / "seed.json");
     out << "{\"format\": \"storey-bench-seed\", \"seed\": 7";  // cut short
   }
-  EXPECT_FALSE(readSeedRecord(dir.path().string(), 7, 12.0, kept));
+  EXPECT_FALSE(readSeedRecord(dir.path().string(), 7, 12.0, "", kept));
+  {
+    std::ofstream out(dir.path() / "seed.json");
+    out << seedRecordJson(row, 12.0, "a: 1\n");
+  }
+  EXPECT_FALSE(readSeedRecord(dir.path().string(), 7, 12.0, "", kept)) << "run with -c";
+  EXPECT_TRUE(readSeedRecord(dir.path().string(), 7, 12.0, "a: 1\n", kept));
+  {
+    // A record from before -c existed: the defaults.
+    std::ofstream out(dir.path() / "seed.json");
+    out << R"({"format": "storey-bench-seed", "version": 1, "seed": 7, "max_duration_s": 12.0,
+              "error": null, "peak_memory_mb": 5.0})";
+  }
+  EXPECT_TRUE(readSeedRecord(dir.path().string(), 7, 12.0, "", kept));
+  EXPECT_FALSE(readSeedRecord(dir.path().string(), 7, 12.0, "a: 1\n", kept));
+}
+
+TEST(BenchCli, AWrongConfigurationFailsBeforeAnythingRuns) {
+  test::TempDir dir;
+  const std::string out = (dir.path() / "bench").string();
+  const std::string config = (dir.path() / "bad.yaml").string();
+  {
+    std::ofstream file(config);
+    file << "backend:\n  graph:\n    windw_keyframes: 20\n";
+  }
+  const test::RunResult run = test::runStorey(
+      "bench --seeds 18 -o " + test::shellQuoted(out) + " -c " + test::shellQuoted(config),
+      dir.path().string());
+  EXPECT_EQ(run.exit_code, 1);
+  EXPECT_NE(run.err.find("unknown key 'backend.graph.windw_keyframes'"), std::string::npos)
+      << run.err;
+  EXPECT_FALSE(std::filesystem::exists(out)) << "nothing written";
 }
 
 /// Processes whose command line mentions `text` (from /proc).
