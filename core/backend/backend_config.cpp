@@ -16,6 +16,7 @@ void BackendConfig::validate() const {
   require(c.keyframes.pitch_roll_deg > 0, "keyframes.pitch_roll_deg", "must be positive");
   require(c.keyframes.max_interval >= 0, "keyframes.max_interval", "must be >= 0");
   require(c.graph.first_tilt_sigma >= 0, "graph.first_tilt_sigma", "must be >= 0");
+  require(c.graph.tilt_prior_sigma >= 0, "graph.tilt_prior_sigma", "must be >= 0");
   const SrpExtractionConfig& e = c.extraction;
   require(e.min_points >= 3, "extraction.min_points", "must be >= 3");
   require(e.max_srps >= 1 && e.max_srps <= 3, "extraction.max_srps", "must be within [1, 3]");

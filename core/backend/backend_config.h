@@ -69,6 +69,8 @@ struct GraphConfig {
   double level_tolerance_deg = 5.0;  ///< planes this close to level or plumb get the prior [deg]
   double first_tilt_sigma = 0.01;    ///< roll/pitch std of the first keyframe (IMU initialisation)
                                      ///< [rad]; its position and yaw are held (gauge); 0 = all held
+  double tilt_prior_sigma = 0.0;     ///< every keyframe's roll/pitch held to the odometry's
+                                     ///< gravity-levelled attitude with this std [rad]; 0 = off
   int max_iterations = 6;            ///< Levenberg-Marquardt iterations per keyframe [>= 1]
   int window_keyframes = 40;         ///< newest keyframes optimised at each keyframe (older ones
                                      ///< held fixed); 0 = always the whole graph [>= 0]

@@ -14,6 +14,7 @@
 #include "backend/analytic_factors.h"
 #include "backend/factors.h"
 #include "backend/plane_math.h"
+#include "backend/tilt_prior.h"
 #include "common/error.h"
 
 namespace storey::backend {
@@ -23,6 +24,8 @@ struct PlaneGraph::Impl {
     double q[4];  // x y z w (Eigen order)
     double t[3];
     std::unique_ptr<ceres::CostFunction> prior;  // first keyframe: roll/pitch prior
+    bool has_tilt_reference = false;             // the odometry's attitude below is set
+    Eigen::Quaterniond q_odom_kf = Eigen::Quaterniond::Identity();
     std::vector<int> edges;
     std::vector<int> observations;
   };
@@ -50,6 +53,7 @@ struct PlaneGraph::Impl {
   ceres::EigenQuaternionManifold quaternion_manifold;
   ceres::SphereManifold<3> sphere_manifold;
   ceres::CauchyLoss plane_loss;
+  Eigen::Quaterniond q_world_odom = Eigen::Quaterniond::Identity();  // the odometry's levelling
 
   explicit Impl(const GraphConfig& c) : config(c), plane_loss(c.plane_loss_width) {}
 
@@ -66,7 +70,10 @@ struct PlaneGraph::Impl {
     return 0;
   }
 
-  void addKeyframeBlocks(ceres::Problem& problem, int i, bool constant) {
+  /// Adds keyframe i's pose blocks (and, when free, its priors; costs made
+  /// for this solve go to `solve_costs`).
+  void addKeyframeBlocks(ceres::Problem& problem, int i, bool constant,
+                         std::vector<std::unique_ptr<ceres::CostFunction>>& solve_costs) {
     Keyframe& k = kfs[static_cast<std::size_t>(i)];
     if (problem.HasParameterBlock(k.q)) return;  // constancy is decided once per solve
     problem.AddParameterBlock(k.q, 4, &quaternion_manifold);
@@ -74,9 +81,17 @@ struct PlaneGraph::Impl {
     if (constant || (i == 0 && !k.prior)) {
       problem.SetParameterBlockConstant(k.q);
       problem.SetParameterBlockConstant(k.t);
-    } else if (i == 0) {
+      return;
+    }
+    if (i == 0) {
       problem.SetParameterBlockConstant(k.t);  // position and (through the prior) yaw: the gauge
       problem.AddResidualBlock(k.prior.get(), nullptr, k.q);
+    }
+    if (k.has_tilt_reference && config.tilt_prior_sigma > 0.0) {
+      // The reference with the odometry's latest levelling (tilt_prior.h).
+      solve_costs.emplace_back(
+          new TiltPriorCost(q_world_odom * k.q_odom_kf, config.tilt_prior_sigma));
+      problem.AddResidualBlock(solve_costs.back().get(), nullptr, k.q);
     }
   }
 };
@@ -107,6 +122,16 @@ void PlaneGraph::setFirstKeyframeAttitude(const Eigen::Quaterniond& q_world_kf) 
   const Eigen::Matrix3d info = R.transpose() * w.asDiagonal() * R;
   impl_->kfs.front().prior.reset(
       RotationPriorFactor::create(q_world_kf.normalized(), sqrtInformation<3>(info)));
+}
+
+void PlaneGraph::setTiltReference(int kf, const Eigen::Quaterniond& q_odom_kf) {
+  Impl::Keyframe& k = impl_->kfs.at(static_cast<std::size_t>(kf));
+  k.q_odom_kf = q_odom_kf.normalized();
+  k.has_tilt_reference = true;
+}
+
+void PlaneGraph::setOdometryLevelling(const Eigen::Quaterniond& q_world_odom) {
+  impl_->q_world_odom = q_world_odom.normalized();
 }
 
 void PlaneGraph::addRelativePose(int a, int b, const Pose& T_a_b,
@@ -161,8 +186,9 @@ GraphSolveStats PlaneGraph::optimise(int window, int max_iterations) {
   const int first_free = window > 0 && n > window ? n - window : 0;
   stats.full = first_free == 0;
 
-  std::vector<std::unique_ptr<ceres::CostFunction>>
-      held_costs;  // outlive `problem`: declared first
+  // Costs made for this solve (priors, held observations); they outlive
+  // `problem`: declared first.
+  std::vector<std::unique_ptr<ceres::CostFunction>> solve_costs;
   ceres::Problem::Options options;
   options.cost_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
   options.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
@@ -172,15 +198,15 @@ GraphSolveStats PlaneGraph::optimise(int window, int max_iterations) {
 
   std::unordered_set<int> free_planes;
   for (int i = first_free; i < n; ++i) {
-    g.addKeyframeBlocks(problem, i, false);
+    g.addKeyframeBlocks(problem, i, false, solve_costs);
     for (int o : g.kfs[static_cast<std::size_t>(i)].observations)
       free_planes.insert(g.observations[static_cast<std::size_t>(o)].plane);
   }
   // Odometry edges that touch a free keyframe (the other end held fixed when older).
   for (const Impl::Edge& e : g.edges) {
     if (e.b < first_free) continue;
-    g.addKeyframeBlocks(problem, e.a, e.a < first_free);
-    g.addKeyframeBlocks(problem, e.b, e.b < first_free);
+    g.addKeyframeBlocks(problem, e.a, e.a < first_free, solve_costs);
+    g.addKeyframeBlocks(problem, e.b, e.b < first_free, solve_costs);
     Impl::Keyframe& a = g.kfs[static_cast<std::size_t>(e.a)];
     Impl::Keyframe& b = g.kfs[static_cast<std::size_t>(e.b)];
     problem.AddResidualBlock(e.cost.get(), nullptr, a.q, a.t, b.q, b.t);
@@ -208,12 +234,12 @@ GraphSolveStats PlaneGraph::optimise(int window, int max_iterations) {
       Impl::Keyframe& k = g.kfs[static_cast<std::size_t>(obs.kf)];
       if (obs.kf < first_free) {
         // Held keyframe: its pose is a constant of a plane-only factor.
-        held_costs.emplace_back(new HeldPlaneObservationFactor(
+        solve_costs.emplace_back(new HeldPlaneObservationFactor(
             obs.factor, Eigen::Quaterniond(k.q[3], k.q[0], k.q[1], k.q[2]).toRotationMatrix(),
             Eigen::Vector3d(k.t[0], k.t[1], k.t[2])));
-        problem.AddResidualBlock(held_costs.back().get(), &g.plane_loss, l.n, l.d);
+        problem.AddResidualBlock(solve_costs.back().get(), &g.plane_loss, l.n, l.d);
       } else {
-        g.addKeyframeBlocks(problem, obs.kf, false);
+        g.addKeyframeBlocks(problem, obs.kf, false, solve_costs);
         problem.AddResidualBlock(obs.cost.get(), &g.plane_loss, k.q, k.t, l.n, l.d);
       }
       ++stats.residual_blocks;

@@ -42,6 +42,12 @@ class PlaneGraph {
   /// its initial estimate's); no effect when first_tilt_sigma is 0 or there
   /// is no keyframe.
   void setFirstKeyframeAttitude(const Eigen::Quaterniond& q_world_kf);
+  /// The odometry's own attitude of keyframe `kf` in its map frame: while the
+  /// keyframe is free, a tilt prior (GraphConfig::tilt_prior_sigma,
+  /// tilt_prior.h) holds its roll and pitch to q_world_odom R_odom_kf.
+  void setTiltReference(int kf, const Eigen::Quaterniond& q_odom_kf);
+  /// The odometry's latest levelling of its map frame (used by the next solves).
+  void setOdometryLevelling(const Eigen::Quaterniond& q_world_odom);
   /// Odometry constraint T_a_b with its 6x6 information (translation, rotation; frame a).
   void addRelativePose(int a, int b, const Pose& T_a_b,
                        const Eigen::Matrix<double, 6, 6>& information);

@@ -113,6 +113,7 @@ struct SrpBackend::Impl {
       T_pred = graph.keyframePose(last.graph_index) * (last.T_odom_lidar.inverse() * T_odom_lidar);
     }
     const int kf_graph = graph.addKeyframe(T_pred);
+    graph.setTiltReference(kf_graph, T_odom_lidar.rotation());
     const int kf_index = static_cast<int>(kfs.size());
     if (!kfs.empty()) {
       const Keyframe& last = kfs.back();
@@ -211,6 +212,7 @@ struct SrpBackend::Impl {
   void levelFirstKeyframe() {
     if (kfs.empty()) return;
     graph.setFirstKeyframeAttitude(q_world_odom * kfs.front().T_odom_lidar.rotation());
+    graph.setOdometryLevelling(q_world_odom);
   }
 
   /// Final pose of the LiDAR for every scan: the odometry since the keyframe
