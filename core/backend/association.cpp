@@ -12,21 +12,30 @@ namespace storey::backend {
 
 const char* toString(AssociationOutcome outcome) {
   switch (outcome) {
-    case AssociationOutcome::kMatched: return "matched";
-    case AssociationOutcome::kNewPlane: return "new_plane";
-    case AssociationOutcome::kAmbiguous: return "ambiguous";
-    case AssociationOutcome::kNearExisting: return "near_existing_plane";
+    case AssociationOutcome::kMatched:
+      return "matched";
+    case AssociationOutcome::kNewPlane:
+      return "new_plane";
+    case AssociationOutcome::kAmbiguous:
+      return "ambiguous";
+    case AssociationOutcome::kNearExisting:
+      return "near_existing_plane";
   }
   return "unknown";
 }
 
 const char* toString(GateReject reason) {
   switch (reason) {
-    case GateReject::kFacing: return "facing_the_other_way";
-    case GateReject::kAngle: return "angle_gate";
-    case GateReject::kDistance: return "distance_gate";
-    case GateReject::kMahalanobis: return "uncertainty_gate";
-    case GateReject::kCount: break;
+    case GateReject::kFacing:
+      return "facing_the_other_way";
+    case GateReject::kAngle:
+      return "angle_gate";
+    case GateReject::kDistance:
+      return "distance_gate";
+    case GateReject::kMahalanobis:
+      return "uncertainty_gate";
+    case GateReject::kCount:
+      break;
   }
   return "unknown";
 }
@@ -57,7 +66,7 @@ struct Hypothesis {
 
 AssociationResult associate(const std::vector<DetectedPlane>& srps,
                             const std::vector<PlanePrediction>& predictions,
-                            const AssociationConfig& config) {
+                            const AssociationConfig& config, const Eigen::Vector3d& up_kf) {
   AssociationResult result;
   result.srps.resize(srps.size());
   const double cos_gate = std::cos(config.angle_gate_deg * kDeg);
@@ -66,9 +75,15 @@ AssociationResult associate(const std::vector<DetectedPlane>& srps,
   const Eigen::Vector3d model_var(config.plane_sigma_rotation * config.plane_sigma_rotation,
                                   config.plane_sigma_rotation * config.plane_sigma_rotation,
                                   config.plane_sigma_distance * config.plane_sigma_distance);
-  const Eigen::Vector3d pose_var(config.pose_sigma_rotation * config.pose_sigma_rotation,
-                                 config.pose_sigma_rotation * config.pose_sigma_rotation,
-                                 config.pose_sigma_translation * config.pose_sigma_translation);
+  // Uncertainty of the predicted pose's correction delta = (phi, rho), in the
+  // keyframe frame: rotation about the up direction u (yaw) with
+  // pose_sigma_rotation, about the horizontal axes (tilt) with pose_sigma_tilt,
+  // translation isotropic: Sigma_phi = s_tilt^2 I + (s_yaw^2 - s_tilt^2) u u^T.
+  const Eigen::Vector3d up = up_kf.normalized();
+  const double var_yaw = config.pose_sigma_rotation * config.pose_sigma_rotation;
+  const double var_tilt = config.pose_sigma_tilt * config.pose_sigma_tilt;
+  const double var_t = config.pose_sigma_translation * config.pose_sigma_translation;
+  const Eigen::Vector3d pose_var(var_tilt, var_tilt, var_t);
 
   // 1. Gates, pair by pair.
   std::vector<std::vector<Candidate>> candidates(srps.size());
@@ -89,7 +104,7 @@ AssociationResult associate(const std::vector<DetectedPlane>& srps,
         near_existing[i] = true;
       if (cos_angle < cos_gate) {
         ++result.gate_rejects[static_cast<std::size_t>(cos_angle < 0.0 ? GateReject::kFacing
-                                                                         : GateReject::kAngle)];
+                                                                       : GateReject::kAngle)];
         continue;
       }
       if (std::abs(dd) > config.distance_gate) {
@@ -104,7 +119,13 @@ AssociationResult associate(const std::vector<DetectedPlane>& srps,
       c.J.block<1, 3>(2, 3) = -p.n_kf.transpose();
       const Eigen::Matrix3d S = srps[i].covariance + Eigen::Matrix3d(model_var.asDiagonal());
       c.W = S.inverse();
-      const Eigen::Matrix3d S_gate = S + Eigen::Matrix3d(pose_var.asDiagonal());
+      // The pose's uncertainty in this pair's residual, J Sigma_delta J^T:
+      // diag(s_tilt^2, s_tilt^2, s_t^2) (J's normal rows are orthonormal up to
+      // the small angle between n_kf and n_obs) plus the yaw's share along
+      // a = d(normal residual)/d(yaw) = B^T [n_kf]x u (zero for a floor).
+      const Eigen::Vector2d a = c.J.block<2, 3>(0, 0) * up;
+      Eigen::Matrix3d S_gate = S + Eigen::Matrix3d(pose_var.asDiagonal());
+      S_gate.topLeftCorner<2, 2>() += (var_yaw - var_tilt) * a * a.transpose();
       c.chi2 = c.r0.dot(S_gate.ldlt().solve(c.r0));
       if (!(c.chi2 <= config.mahalanobis_gate)) {
         ++result.gate_rejects[static_cast<std::size_t>(GateReject::kMahalanobis)];
@@ -119,9 +140,13 @@ AssociationResult associate(const std::vector<DetectedPlane>& srps,
   }
 
   // 2. Joint hypotheses: each SRP to one of its candidates or to a new plane.
-  Vector6 prior_diag;
-  prior_diag << pose_var(0), pose_var(0), pose_var(0), pose_var(2), pose_var(2), pose_var(2);
-  const Matrix6 P = prior_diag.cwiseInverse().asDiagonal();
+  // The prior on the correction: Sigma_delta^-1 (Sigma_phi^-1 in closed form).
+  Matrix6 P = Matrix6::Zero();
+  P.topLeftCorner<3, 3>() =
+      Eigen::Matrix3d(Eigen::Vector3d::Constant(1.0 / var_tilt).asDiagonal()) +
+      (1.0 / var_yaw - 1.0 / var_tilt) * up * up.transpose();
+  P.bottomRightCorner<3, 3>() =
+      Eigen::Matrix3d(Eigen::Vector3d::Constant(1.0 / var_t).asDiagonal());
   std::vector<Hypothesis> hypotheses;
   Hypothesis h;
   h.choice.assign(srps.size(), -1);
@@ -153,7 +178,8 @@ AssociationResult associate(const std::vector<DetectedPlane>& srps,
         const int pred = candidates[i][static_cast<std::size_t>(k)].prediction;
         bool used = false;
         for (std::size_t m = 0; m < i; ++m)
-          if (h.choice[m] >= 0 && candidates[m][static_cast<std::size_t>(h.choice[m])].prediction == pred)
+          if (h.choice[m] >= 0 &&
+              candidates[m][static_cast<std::size_t>(h.choice[m])].prediction == pred)
             used = true;
         if (used) continue;
       }
@@ -172,10 +198,10 @@ AssociationResult associate(const std::vector<DetectedPlane>& srps,
     SrpAssociation& out = result.srps[i];
     const int k = best->choice[i];
     if (k < 0) {
-      out.outcome = !candidates[i].empty() || near_existing[i] ? (candidates[i].empty()
-                                                                      ? AssociationOutcome::kNearExisting
-                                                                      : AssociationOutcome::kAmbiguous)
-                                                                : AssociationOutcome::kNewPlane;
+      out.outcome = !candidates[i].empty() || near_existing[i]
+                        ? (candidates[i].empty() ? AssociationOutcome::kNearExisting
+                                                 : AssociationOutcome::kAmbiguous)
+                        : AssociationOutcome::kNewPlane;
       continue;
     }
     const Candidate& c = candidates[i][static_cast<std::size_t>(k)];

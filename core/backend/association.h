@@ -41,9 +41,9 @@ const char* toString(GateReject reason);
 
 struct SrpAssociation {
   AssociationOutcome outcome = AssociationOutcome::kNewPlane;
-  int landmark = -1;     ///< matched landmark (kMatched)
-  double chi2 = 0.0;     ///< Mahalanobis distance of the pair alone (kMatched)
-  int candidates = 0;    ///< landmarks within all gates
+  int landmark = -1;   ///< matched landmark (kMatched)
+  double chi2 = 0.0;   ///< Mahalanobis distance of the pair alone (kMatched)
+  int candidates = 0;  ///< landmarks within all gates
 };
 
 struct AssociationResult {
@@ -52,9 +52,12 @@ struct AssociationResult {
   int hypotheses = 0;  ///< joint hypotheses scored
 };
 
-/// Associates `srps` (keyframe frame) with the predicted landmarks.
+/// Associates `srps` (keyframe frame) with the predicted landmarks; `up_kf`
+/// is the world's up direction in the keyframe frame (the predicted pose's),
+/// which splits the pose uncertainty into tilt and yaw.
 AssociationResult associate(const std::vector<DetectedPlane>& srps,
                             const std::vector<PlanePrediction>& predictions,
-                            const AssociationConfig& config);
+                            const AssociationConfig& config,
+                            const Eigen::Vector3d& up_kf = Eigen::Vector3d::UnitZ());
 
 }  // namespace storey::backend

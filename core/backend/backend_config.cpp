@@ -40,6 +40,7 @@ void BackendConfig::validate() const {
   require(a.distance_gate > 0, "association.distance_gate", "must be positive");
   require(a.mahalanobis_gate > 0, "association.mahalanobis_gate", "must be positive");
   require(a.pose_sigma_rotation > 0, "association.pose_sigma_rotation", "must be positive");
+  require(a.pose_sigma_tilt > 0, "association.pose_sigma_tilt", "must be positive");
   require(a.pose_sigma_translation > 0, "association.pose_sigma_translation", "must be positive");
   require(a.plane_sigma_rotation > 0, "association.plane_sigma_rotation", "must be positive");
   require(a.plane_sigma_distance > 0, "association.plane_sigma_distance", "must be positive");

@@ -44,7 +44,13 @@ struct AssociationConfig {
   double distance_gate = 0.2;   ///< largest |d| difference of a match [m, > 0]
   double mahalanobis_gate =
       16.27;  ///< chi-square (3 dof) gate with the uncertainties (99.9 %) [> 0]
-  double pose_sigma_rotation = 0.02;  ///< uncertainty of the predicted keyframe rotation [rad, > 0]
+  double pose_sigma_rotation =
+      0.02;  ///< uncertainty of the predicted keyframe rotation (its
+             ///< yaw; all of it when pose_sigma_tilt is not smaller) [rad, > 0]
+  /// ... of its roll and pitch (the odometry is gravity-aligned: its tilt is
+  /// known far better than its yaw), so a floor cannot match a surface a few
+  /// degrees off level (a 1:12 ramp, a band across two levels) [rad, > 0]
+  double pose_sigma_tilt = 0.02;
   double pose_sigma_translation = 0.05;  ///< same for its translation [m, > 0]
   double plane_sigma_rotation = 0.005;   ///< landmark and model uncertainty of a normal [rad, > 0]
   double plane_sigma_distance = 0.02;    ///< same for a distance [m, > 0]

@@ -143,8 +143,8 @@ struct SrpBackend::Impl {
                              l.d_world - l.n_world.dot(T_pred.translation()),
                              observation_count[static_cast<std::size_t>(j)]});
     }
-    const backend::AssociationResult assoc =
-        backend::associate(srps.srps, predictions, config.association);
+    const backend::AssociationResult assoc = backend::associate(
+        srps.srps, predictions, config.association, R.transpose() * Eigen::Vector3d::UnitZ());
     for (std::size_t i = 0; i < stats.gate_rejects.size(); ++i)
       stats.gate_rejects[i] += assoc.gate_rejects[i];
     bool constraint = false, revisit = false;

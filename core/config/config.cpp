@@ -131,6 +131,7 @@ void visitBackend(V& v, BackendConfig& c) {
     a.field("distance_gate", x.distance_gate);
     a.field("mahalanobis_gate", x.mahalanobis_gate);
     a.field("pose_sigma_rotation", x.pose_sigma_rotation);
+    a.field("pose_sigma_tilt", x.pose_sigma_tilt);
     a.field("pose_sigma_translation", x.pose_sigma_translation);
     a.field("plane_sigma_rotation", x.plane_sigma_rotation);
     a.field("plane_sigma_distance", x.plane_sigma_distance);

@@ -114,5 +114,44 @@ TEST(Association, APlaneSeenOnceDoesNotKeepARealOneOut) {
             AssociationOutcome::kNearExisting);
 }
 
+TEST(Association, TiltIsKnownBetterThanYaw) {
+  // A floor landmark 1.3 m under the sensor and a surface 4 deg off level (a
+  // band across two levels, a ramp) seen at the same distance below: with the
+  // tilt as uncertain as the yaw (20 mrad) it passes the uncertainty gate (a
+  // candidate for the floor, and the floor is no longer matched for sure);
+  // with the tilt of a gravity-aligned odometry (5 mrad) it does not. A wall seen with a 1 deg yaw
+  // error still matches: the yaw keeps its 20 mrad.
+  const std::vector<PlanePrediction> map{predicted(0, {0, 0, -1}, 1.3),
+                                         predicted(1, {0, 1, 0}, 1.1)};
+  const Eigen::Vector3d slanted =
+      Eigen::AngleAxisd(4.0 * M_PI / 180.0, Eigen::Vector3d::UnitX()) * Eigen::Vector3d(0, 0, -1);
+  const std::vector<DetectedPlane> srps{srp(slanted, 1.3), srp(yawed({0, 1, 0}, 1.0), 1.1)};
+  AssociationConfig tilt_as_yaw;
+  tilt_as_yaw.pose_sigma_tilt = tilt_as_yaw.pose_sigma_rotation;
+  AssociationConfig gravity;
+  gravity.pose_sigma_tilt = 0.005;
+  const AssociationResult loose = associate(srps, map, tilt_as_yaw, Eigen::Vector3d::UnitZ());
+  EXPECT_EQ(loose.srps[0].candidates, 1);
+  EXPECT_NE(loose.srps[0].outcome, AssociationOutcome::kNewPlane);
+  const AssociationResult r = associate(srps, map, gravity, Eigen::Vector3d::UnitZ());
+  EXPECT_EQ(r.srps[0].candidates, 0);
+  EXPECT_NE(r.srps[0].outcome, AssociationOutcome::kMatched);
+  EXPECT_EQ(r.srps[1].outcome, AssociationOutcome::kMatched);
+  EXPECT_EQ(r.srps[1].landmark, 1);
+  // Up is the keyframe's: the same scene seen by a keyframe rolled by 90 deg
+  // (up along its y) gives the same decisions.
+  const Eigen::Matrix3d R_kf_rolled =
+      Eigen::AngleAxisd(-M_PI / 2, Eigen::Vector3d::UnitX()).toRotationMatrix();
+  std::vector<PlanePrediction> map_rolled = map;
+  for (PlanePrediction& p : map_rolled) p.n_kf = R_kf_rolled * p.n_kf;
+  std::vector<DetectedPlane> srps_rolled = srps;
+  for (DetectedPlane& p : srps_rolled)
+    p.plane = Plane(R_kf_rolled * p.plane.normal(), p.plane.distance());
+  const AssociationResult rolled =
+      associate(srps_rolled, map_rolled, gravity, R_kf_rolled * Eigen::Vector3d::UnitZ());
+  EXPECT_EQ(rolled.srps[0].candidates, 0);
+  EXPECT_EQ(rolled.srps[1].outcome, AssociationOutcome::kMatched);
+}
+
 }  // namespace
 }  // namespace storey::backend
