@@ -54,6 +54,14 @@ void BackendConfig::validate() const {
   require(g.odometry_sigma_rotation > 0, "graph.odometry_sigma_rotation", "must be positive");
   require(g.odometry_sigma_rotation_per_m >= 0, "graph.odometry_sigma_rotation_per_m",
           "must be >= 0");
+  require(g.odometry_sigma_translation_per_rad >= 0, "graph.odometry_sigma_translation_per_rad",
+          "must be >= 0");
+  require(g.odometry_sigma_translation_per_m_climbed >= 0,
+          "graph.odometry_sigma_translation_per_m_climbed", "must be >= 0");
+  require(g.odometry_sigma_rotation_per_rad >= 0, "graph.odometry_sigma_rotation_per_rad",
+          "must be >= 0");
+  require(g.odometry_sigma_rotation_per_m_climbed >= 0,
+          "graph.odometry_sigma_rotation_per_m_climbed", "must be >= 0");
   require(g.plane_loss_width > 0, "graph.plane_loss_width", "must be positive");
   require(g.plane_sigma_rotation >= 0, "graph.plane_sigma_rotation", "must be >= 0");
   require(g.plane_sigma_distance >= 0, "graph.plane_sigma_distance", "must be >= 0");

@@ -62,10 +62,15 @@ struct AssociationConfig {
 
 /// The keyframe factor graph.
 struct GraphConfig {
-  double odometry_sigma_translation = 0.01;        ///< relative-pose std per keyframe edge [m, > 0]
-  double odometry_sigma_translation_per_m = 0.01;  ///< added per metre travelled [m/m, >= 0]
-  double odometry_sigma_rotation = 0.002;        ///< relative-pose rotation std per edge [rad, > 0]
-  double odometry_sigma_rotation_per_m = 0.002;  ///< added per metre travelled [rad/m, >= 0]
+  double odometry_sigma_translation = 0.0015;  ///< relative-pose std per keyframe edge [m, > 0]
+  double odometry_sigma_translation_per_m = 0.0015;  ///< added per metre travelled [m/m, >= 0]
+  double odometry_sigma_rotation = 0.0003;  ///< relative-pose rotation std per edge [rad, > 0]
+  double odometry_sigma_rotation_per_m = 0.0003;  ///< added per metre travelled [rad/m, >= 0]
+  /// Added per radian turned and per metre climbed (backend/odometry_information.h).
+  double odometry_sigma_translation_per_rad = 0.004;        ///< [m/rad, >= 0]
+  double odometry_sigma_translation_per_m_climbed = 0.012;  ///< [m/m, >= 0]
+  double odometry_sigma_rotation_per_rad = 0.0003;          ///< [rad/rad, >= 0]
+  double odometry_sigma_rotation_per_m_climbed = 0.001;     ///< [rad/m, >= 0]
   double plane_sigma_rotation =
       0.002;  ///< added to a plane observation's normal std (model error) [rad]
   double plane_sigma_distance = 0.01;  ///< added to its distance std [m]

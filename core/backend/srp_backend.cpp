@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "backend/keyframe_rule.h"
+#include "backend/odometry_information.h"
 #include "backend/plane_graph.h"
 #include "backend/solve_schedule.h"
 #include "common/error.h"
@@ -82,17 +83,6 @@ struct SrpBackend::Impl {
                          T_world_lidar, time);
   }
 
-  Eigen::Matrix<double, 6, 6> odometryInformation(const Pose& T_a_b) const {
-    const GraphConfig& g = config.graph;
-    const double dist = T_a_b.translation().norm();
-    const double st = g.odometry_sigma_translation + g.odometry_sigma_translation_per_m * dist;
-    const double sr = g.odometry_sigma_rotation + g.odometry_sigma_rotation_per_m * dist;
-    Eigen::Matrix<double, 6, 1> diag;
-    diag << 1 / (st * st), 1 / (st * st), 1 / (st * st), 1 / (sr * sr), 1 / (sr * sr),
-        1 / (sr * sr);
-    return diag.asDiagonal();
-  }
-
   /// Adds the newest scan as a keyframe (T_world_lidar: its odometry pose
   /// corrected as of the last solve); optimises when a plane constraint appears.
   void processKeyframe(const std::vector<Eigen::Vector3f>& points, const Pose& T_world_lidar) {
@@ -118,7 +108,9 @@ struct SrpBackend::Impl {
     if (!kfs.empty()) {
       const Keyframe& last = kfs.back();
       const Pose T_a_b = last.T_odom_lidar.inverse() * T_odom_lidar;
-      graph.addRelativePose(last.graph_index, kf_graph, T_a_b, odometryInformation(T_a_b));
+      graph.addRelativePose(
+          last.graph_index, kf_graph, T_a_b,
+          backend::odometryEdgeInformation(config.graph, last.T_odom_lidar, T_odom_lidar));
     }
     kfs.push_back({scan_index, scans.back().time, T_odom_lidar, kf_graph});
     ++stats.keyframes;

@@ -145,6 +145,10 @@ void visitBackend(V& v, BackendConfig& c) {
     g.field("odometry_sigma_translation_per_m", x.odometry_sigma_translation_per_m);
     g.field("odometry_sigma_rotation", x.odometry_sigma_rotation);
     g.field("odometry_sigma_rotation_per_m", x.odometry_sigma_rotation_per_m);
+    g.field("odometry_sigma_translation_per_rad", x.odometry_sigma_translation_per_rad);
+    g.field("odometry_sigma_translation_per_m_climbed", x.odometry_sigma_translation_per_m_climbed);
+    g.field("odometry_sigma_rotation_per_rad", x.odometry_sigma_rotation_per_rad);
+    g.field("odometry_sigma_rotation_per_m_climbed", x.odometry_sigma_rotation_per_m_climbed);
     g.field("plane_sigma_rotation", x.plane_sigma_rotation);
     g.field("plane_sigma_distance", x.plane_sigma_distance);
     g.field("plane_loss_width", x.plane_loss_width);
