@@ -118,6 +118,77 @@ std::vector<Slab> clusterByElevation(const std::vector<HorizontalRegion>& candid
   return slabs;
 }
 
+/// Flight ends: keyframes where a run of steep keyframe-to-keyframe steps
+/// (slope >= kStairSlope, rising or falling) climbing at least kMinFlightRise
+/// in total starts or ends. A ramp (buildings: <= 1:12) is never steep; the
+/// few steps up to a split level climb less than a flight.
+constexpr double kStairSlope = 0.3;       // 17 deg; stairs are 25-40 deg, ramps <= 5 deg
+constexpr double kMinStepRise = 0.05;     // [m] smaller steps are noise, not stairs
+constexpr double kMinFlightRise = 1.0;    // [m] half a storey's flight and more
+constexpr double kArrivalReach = 1.0;     // [m] a floor slab this close (xy) carries a flight end
+constexpr double kMinSensorHeight = 0.2;  // [m] the sensor above the floor it stands on ...
+constexpr double kMaxSensorHeight = 2.5;  // ... at most this
+
+std::vector<Eigen::Vector3d> flightEnds(const std::vector<Eigen::Vector3d>& keyframes) {
+  std::vector<Eigen::Vector3d> ends;
+  std::size_t i = 0;
+  while (i + 1 < keyframes.size()) {
+    auto steep = [&](std::size_t k) {
+      const Eigen::Vector3d& a = keyframes[k];
+      const Eigen::Vector3d& b = keyframes[k + 1];
+      if (!a.allFinite() || !b.allFinite()) return false;
+      const double dz = std::abs(b.z() - a.z());
+      return dz >= kMinStepRise && dz >= kStairSlope * (b - a).head<2>().norm();
+    };
+    if (!steep(i)) {
+      ++i;
+      continue;
+    }
+    std::size_t j = i;
+    while (j + 1 < keyframes.size() && steep(j)) ++j;
+    if (std::abs(keyframes[j].z() - keyframes[i].z()) >= kMinFlightRise) {
+      ends.push_back(keyframes[i]);
+      ends.push_back(keyframes[j]);
+    }
+    i = j;
+  }
+  return ends;
+}
+
+/// Per floor slab: how many flight ends stand on it (the highest slab with
+/// points within kArrivalReach in xy, kMinSensorHeight-kMaxSensorHeight below
+/// the sensor). Stairs arrive at a storey's main floor.
+std::vector<std::size_t> flightEndVotes(const std::vector<Slab>& slabs,
+                                        const std::vector<HorizontalRegion>& candidates,
+                                        const std::vector<PlanarRegion>& regions,
+                                        const std::vector<Eigen::Vector3d>& points,
+                                        const std::vector<Eigen::Vector3d>& keyframes) {
+  std::vector<std::size_t> votes(slabs.size(), 0);
+  const std::vector<Eigen::Vector3d> ends = flightEnds(keyframes);
+  if (ends.empty()) return votes;
+  const double cell = 0.5 * kArrivalReach, inv = 1.0 / cell;
+  std::vector<std::unordered_set<std::uint64_t>> cells(slabs.size());
+  for (std::size_t s = 0; s < slabs.size(); ++s)
+    for (std::size_t c : slabs[s].members)
+      for (std::size_t i : regions[candidates[c].region].indices)
+        cells[s].insert(cellKey(points[i].x(), points[i].y(), inv));
+  for (const Eigen::Vector3d& end : ends) {
+    std::size_t best = slabs.size();
+    for (std::size_t s = 0; s < slabs.size(); ++s) {
+      const double below = end.z() - slabs[s].elevation;
+      if (below < kMinSensorHeight || below > kMaxSensorHeight) continue;
+      if (best < slabs.size() && slabs[s].elevation <= slabs[best].elevation) continue;
+      bool near = false;
+      for (int dx = -2; dx <= 2 && !near; ++dx)
+        for (int dy = -2; dy <= 2 && !near; ++dy)
+          near = cells[s].count(cellKey(end.x() + dx * cell, end.y() + dy * cell, inv)) > 0;
+      if (near) best = s;
+    }
+    if (best < slabs.size()) ++votes[best];
+  }
+  return votes;
+}
+
 }  // namespace
 
 StoreySegmentation segmentStoreys(MapCloud& map,
@@ -203,7 +274,14 @@ StoreySegmentation segmentStoreys(MapCloud& map,
     else
       ++stats.slabs_too_small;
   }
+  // Slabs the stairs arrive at come first, then by area: of a split level's
+  // two floors (a wing a few steps or a ramp higher, possibly the larger), the
+  // storey's floor is the one its stair flights start and end on.
+  const std::vector<std::size_t> votes =
+      flightEndVotes(floor_slabs, up, regions, sub.points, keyframe_positions);
   std::sort(by_area.begin(), by_area.end(), [&](std::size_t a, std::size_t b) {
+    const bool stairs_a = votes[a] > 0, stairs_b = votes[b] > 0;
+    if (stairs_a != stairs_b) return stairs_a;
     return floor_slabs[a].area > floor_slabs[b].area;
   });
   std::vector<std::size_t> floors;

@@ -8,7 +8,11 @@
 ///    are floor candidates (normal up) or ceiling candidates (normal down).
 /// 3. Candidates are clustered by elevation into slabs (slab_tolerance). A
 ///    floor slab has >= min_floor_area; of floors closer than
-///    min_storey_height the larger is kept (stair landings, table tops).
+///    min_storey_height the one stair flights start or end on is kept (a
+///    split level: the main floor, not a larger wing a ramp higher), else the
+///    larger (stair landings, table tops). A flight: consecutive keyframes
+///    climbing steeper than 17 deg, at least 1 m in all; its end votes for the
+///    highest floor slab within 1 m (xy) and 0.2-2.5 m below the sensor.
 ///    Floor elevation = median z of the slab's points (top of the slab).
 /// 4. Ceiling of a storey: the largest downward slab between floor +
 ///    min_clear_height and the next floor (or floor + max_clear_height).
@@ -53,7 +57,7 @@ struct StoreySegmentationStats {
   std::size_t ceiling_candidates = 0;  ///< downward horizontal regions >= min_region_area
   std::size_t floor_slabs = 0;         ///< elevation clusters of floor candidates
   std::size_t slabs_too_small = 0;     ///< rejected: area < min_floor_area
-  std::size_t slabs_too_close = 0;     ///< rejected: within min_storey_height of a larger floor
+  std::size_t slabs_too_close = 0;     ///< rejected: within min_storey_height of a kept floor
   std::size_t stair_cells = 0;
   double seconds_normals = 0.0, seconds_regions = 0.0, seconds_labels = 0.0,
          seconds_footprints = 0.0;

@@ -15,13 +15,14 @@ struct StoreysConfig {
   double min_region_area = 0.5;   ///< smaller planar regions are ignored [m^2]
   double horizontal_angle_deg =
       10.0;  ///< a region within this of horizontal is a floor/ceiling candidate [deg]
-  double slab_tolerance = 0.15;    ///< regions this close in elevation form one slab [m]
-  double min_floor_area = 10.0;    ///< a floor slab has at least this much upward-facing area [m^2]
-  double min_storey_height = 2.0;  ///< floors closer than this are one storey (the larger kept) [m]
-  double floor_tolerance = 0.15;   ///< points down to this below a floor belong to its storey [m]
-  double min_clear_height = 1.8;   ///< ceilings are searched from this above the floor [m]
-  double max_clear_height = 8.0;   ///< ... up to this (or the next floor) [m]
-  double stairs_cell_size = 0.5;   ///< grid cell of the stairwell mask [m, > 0]
+  double slab_tolerance = 0.15;  ///< regions this close in elevation form one slab [m]
+  double min_floor_area = 10.0;  ///< a floor slab has at least this much upward-facing area [m^2]
+  double min_storey_height =
+      2.0;  ///< floors closer than this are one storey (the stairs' kept, else the larger) [m]
+  double floor_tolerance = 0.15;  ///< points down to this below a floor belong to its storey [m]
+  double min_clear_height = 1.8;  ///< ceilings are searched from this above the floor [m]
+  double max_clear_height = 8.0;  ///< ... up to this (or the next floor) [m]
+  double stairs_cell_size = 0.5;  ///< grid cell of the stairwell mask [m, > 0]
   double stairs_min_rise =
       0.3;  ///< sensor this far above its usual height over the floor: on stairs [m]
   double stairs_trajectory_distance =

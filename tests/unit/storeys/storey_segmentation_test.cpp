@@ -3,6 +3,7 @@
 // stair flight between each pair of floors; footprints of known rectangles.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <random>
 
 #include "common/error.h"
@@ -15,6 +16,7 @@ constexpr double kLength = 14.0, kWidth = 8.0;  // building footprint [m]
 // Stairwell (a hole in the floors above the lowest): x in [8.5, 13.5], y in [6.5, 8].
 constexpr double kStairX0 = 8.5, kStairX1 = 13.5, kStairY0 = 6.5;
 constexpr double kSlab = 0.25, kSpacing = 0.04, kNoise = 0.01, kSensorHeight = 0.6;
+constexpr double kWingRise = 0.45, kWingLength = 18.0;  // split-level wing east of x = kLength
 
 bool inStairwell(double x, double y) {
   return x >= kStairX0 && x <= kStairX1 && y >= kStairY0;
@@ -58,12 +60,21 @@ struct Building {
       for (double z = z0; z <= z1; z += kSpacing) add({x, y, z});
   }
 
-  Building() {
+  /// `wing`: a split level east of the building on every storey, kWingRise
+  /// above the main floor and larger than it, walked before the corridor.
+  explicit Building(bool wing = false) {
     for (std::size_t k = 0; k < floors.size(); ++k) {
       current = k;
       const double f = floors[k];
       const double next = k + 1 < floors.size() ? floors[k + 1] : f + 3.0;
       const double ceiling = next - kSlab;
+      if (wing) {
+        horizontal(f + kWingRise, kLength, kLength + kWingLength, 0, kWidth, false, +1);
+        for (double x = kLength + 1.0; x <= kLength + kWingLength; x += 1.0) {
+          keyframes.push_back({x, 4.0, f + kWingRise + kSensorHeight});
+          keyframe_storey.push_back(k);
+        }
+      }
       horizontal(f, 0, kLength, 0, kWidth, k > 0, +1);
       horizontal(ceiling, 0, kLength, 0, kWidth, k + 1 < floors.size(), -1);
       wallX(0, f, ceiling);
@@ -164,6 +175,32 @@ TEST(StoreySegmentation, ThreeStoreysWithStairs) {
   EXPECT_GT(static_cast<double>(stairs_flagged) / stairs_true, 0.95);
   EXPECT_GT(others, 400000u);
   EXPECT_EQ(others_flagged, 0u);
+}
+
+// A split level: every storey has a wing a ramp higher (0.45 m) and larger
+// than the main floor. The storey's floor is the main floor, where the stair
+// flights start and end; without the flights only area decides (the wing).
+TEST(StoreySegmentation, SplitLevelFloorIsWhereTheStairsArrive) {
+  Building b(true);
+  const StoreysConfig config;
+  ASSERT_GT(kWingLength * kWidth, kLength * kWidth);  // the wing is the larger level
+  MapCloud without_flights = b.map;
+
+  const StoreySegmentation result = segmentStoreys(b.map, b.keyframes, config);
+  ASSERT_EQ(result.storeys.size(), 3u);
+  for (std::size_t k = 0; k < 3; ++k)
+    EXPECT_NEAR(result.storeys[k].floor_elevation, b.floors[k], 0.05) << "storey " << k;
+
+  // The same walk without the stair flights' keyframes (unknown poses): the
+  // larger level wins.
+  std::vector<Eigen::Vector3d> no_flights = b.keyframes;
+  for (Eigen::Vector3d& k : no_flights)
+    if (k.x() >= kStairX0 && k.x() <= kStairX1) k.setConstant(std::nan(""));
+  const StoreySegmentation by_area = segmentStoreys(without_flights, no_flights, config);
+  ASSERT_EQ(by_area.storeys.size(), 3u);
+  for (std::size_t k = 0; k < 3; ++k)
+    EXPECT_NEAR(by_area.storeys[k].floor_elevation, b.floors[k] + kWingRise, 0.05)
+        << "storey " << k;
 }
 
 TEST(StoreySegmentation, NoFloorGivesNoStoreys) {
