@@ -167,7 +167,7 @@ void RunReportBuilder::setMap(const MapStage& o) {
         {"floor_slabs", s.floor_slabs},
         {"slabs_rejected",
          {{"smaller_than_min_floor_area", s.slabs_too_small},
-          {"within_min_storey_height_of_a_larger_floor", s.slabs_too_close}}},
+          {"within_min_storey_height_of_a_kept_floor", s.slabs_too_close}}},
         {"stair_cells", s.stair_cells}}},
       {"files", o.files},
       {"seconds",
