@@ -78,6 +78,14 @@ struct Slab {
   double area = 0.0;                 ///< occupied xy cells [m^2]
 };
 
+/// Calls fn(i) for the index of every subsampled point of a slab's regions.
+template <typename Fn>
+void forEachSlabPoint(const Slab& slab, const std::vector<HorizontalRegion>& candidates,
+                      const std::vector<PlanarRegion>& regions, Fn&& fn) {
+  for (std::size_t c : slab.members)
+    for (std::size_t i : regions[candidates[c].region].indices) fn(i);
+}
+
 double cellArea(const std::vector<std::size_t>& point_indices,
                 const std::vector<Eigen::Vector3d>& points, double cell) {
   std::unordered_set<std::uint64_t> cells;
@@ -106,12 +114,10 @@ std::vector<Slab> clusterByElevation(const std::vector<HorizontalRegion>& candid
   for (Slab& slab : slabs) {
     std::vector<double> z;
     std::vector<std::size_t> all;
-    for (std::size_t c : slab.members) {
-      for (std::size_t i : regions[candidates[c].region].indices) {
-        z.push_back(points[i].z());
-        all.push_back(i);
-      }
-    }
+    forEachSlabPoint(slab, candidates, regions, [&](std::size_t i) {
+      z.push_back(points[i].z());
+      all.push_back(i);
+    });
     slab.elevation = median(std::move(z));
     slab.area = cellArea(all, points, cell);
   }
@@ -130,16 +136,16 @@ constexpr double kMinSensorHeight = 0.2;  // [m] the sensor above the floor it s
 constexpr double kMaxSensorHeight = 2.5;  // ... at most this
 
 std::vector<Eigen::Vector3d> flightEnds(const std::vector<Eigen::Vector3d>& keyframes) {
+  auto steep = [&](std::size_t k) {  // the step from keyframe k to k + 1
+    const Eigen::Vector3d& a = keyframes[k];
+    const Eigen::Vector3d& b = keyframes[k + 1];
+    if (!a.allFinite() || !b.allFinite()) return false;
+    const double dz = std::abs(b.z() - a.z());
+    return dz >= kMinStepRise && dz >= kStairSlope * (b - a).head<2>().norm();
+  };
   std::vector<Eigen::Vector3d> ends;
   std::size_t i = 0;
   while (i + 1 < keyframes.size()) {
-    auto steep = [&](std::size_t k) {
-      const Eigen::Vector3d& a = keyframes[k];
-      const Eigen::Vector3d& b = keyframes[k + 1];
-      if (!a.allFinite() || !b.allFinite()) return false;
-      const double dz = std::abs(b.z() - a.z());
-      return dz >= kMinStepRise && dz >= kStairSlope * (b - a).head<2>().norm();
-    };
     if (!steep(i)) {
       ++i;
       continue;
@@ -169,9 +175,9 @@ std::vector<std::size_t> flightEndVotes(const std::vector<Slab>& slabs,
   const double cell = 0.5 * kArrivalReach, inv = 1.0 / cell;
   std::vector<std::unordered_set<std::uint64_t>> cells(slabs.size());
   for (std::size_t s = 0; s < slabs.size(); ++s)
-    for (std::size_t c : slabs[s].members)
-      for (std::size_t i : regions[candidates[c].region].indices)
-        cells[s].insert(cellKey(points[i].x(), points[i].y(), inv));
+    forEachSlabPoint(slabs[s], candidates, regions, [&](std::size_t i) {
+      cells[s].insert(cellKey(points[i].x(), points[i].y(), inv));
+    });
   for (const Eigen::Vector3d& end : ends) {
     std::size_t best = slabs.size();
     for (std::size_t s = 0; s < slabs.size(); ++s) {
@@ -355,8 +361,7 @@ StoreySegmentation segmentStoreys(MapCloud& map,
   }
   std::vector<bool> in_floor(sub.points.size(), false);
   for (std::size_t f : floors)
-    for (std::size_t c : floor_slabs[f].members)
-      for (std::size_t i : regions[up[c].region].indices) in_floor[i] = true;
+    forEachSlabPoint(floor_slabs[f], up, regions, [&](std::size_t i) { in_floor[i] = true; });
   const double inv_cell = 1.0 / config.stairs_cell_size;
   std::vector<std::unordered_map<std::uint64_t, int>> step_points(n);
   const double gate2 = config.stairs_trajectory_distance * config.stairs_trajectory_distance;
@@ -396,9 +401,9 @@ StoreySegmentation segmentStoreys(MapCloud& map,
   std::vector<std::unordered_set<std::uint64_t>> floor_cells(n);
   const double inv_voxel = 1.0 / config.voxel_size;
   for (std::size_t k = 0; k < n; ++k)
-    for (std::size_t c : floor_slabs[floors[k]].members)
-      for (std::size_t i : regions[up[c].region].indices)
-        floor_cells[k].insert(cellKey(sub.points[i].x(), sub.points[i].y(), inv_voxel));
+    forEachSlabPoint(floor_slabs[floors[k]], up, regions, [&](std::size_t i) {
+      floor_cells[k].insert(cellKey(sub.points[i].x(), sub.points[i].y(), inv_voxel));
+    });
   for (std::size_t i = 0; i < map.size(); ++i) {
     const Eigen::Vector3f& p = map.positions[i];
     if (!p.allFinite()) continue;
@@ -424,8 +429,8 @@ StoreySegmentation segmentStoreys(MapCloud& map,
   // One storey's alpha shape per thread (each independent of the others).
   tbb::parallel_for(std::size_t{0}, n, [&](std::size_t k) {
     std::vector<Eigen::Vector2d> xy;
-    for (std::size_t c : floor_slabs[floors[k]].members)
-      for (std::size_t i : regions[up[c].region].indices) xy.push_back(sub.points[i].head<2>());
+    forEachSlabPoint(floor_slabs[floors[k]], up, regions,
+                     [&](std::size_t i) { xy.push_back(sub.points[i].head<2>()); });
     const Footprint footprint = alphaShapeFootprint(xy, config.footprint_alpha);
     result.storeys[k].footprint = footprint.polygon;
     result.storeys[k].footprint_area = footprint.area;
