@@ -94,7 +94,8 @@ struct GraphConfig {
                                    ///< work per keyframe, solve_schedule.h) [0, 1]; 0 = off
   int final_iterations = 50;       ///< iterations of the whole-graph solve at the end [>= 0]
   double outlier_chi2 = 16.27;     ///< observations with a larger whitened residual after the
-                                   ///< final solve are reported as wrong associations [> 0]
+                                   ///< end's whole-graph solve are wrong associations: left out,
+                                   ///< the graph solved again, and reported [> 0]
 };
 
 /// The back end (SRP constraints, keyframe graph).

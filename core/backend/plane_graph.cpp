@@ -43,6 +43,7 @@ struct PlaneGraph::Impl {
     int kf, plane;
     PlaneObservationFactor factor;
     std::unique_ptr<ceres::CostFunction> cost;  ///< factor's, with the keyframe pose free
+    bool excluded = false;                      ///< left out of every solve
   };
 
   GraphConfig config;
@@ -64,8 +65,8 @@ struct PlaneGraph::Impl {
     if (cap <= 0) return 0;
     int held = 0;
     for (std::size_t i = l.observations.size(); i-- > 0;) {
-      if (observations[static_cast<std::size_t>(l.observations[i])].kf < first_free && ++held > cap)
-        return i + 1;
+      const Observation& obs = observations[static_cast<std::size_t>(l.observations[i])];
+      if (!obs.excluded && obs.kf < first_free && ++held > cap) return i + 1;
     }
     return 0;
   }
@@ -177,6 +178,14 @@ int PlaneGraph::addObservation(int kf, int plane, const Eigen::Vector3d& n_kf, d
   return index;
 }
 
+void PlaneGraph::excludeObservation(int o) {
+  impl_->observations.at(static_cast<std::size_t>(o)).excluded = true;
+}
+
+bool PlaneGraph::observationExcluded(int o) const {
+  return impl_->observations.at(static_cast<std::size_t>(o)).excluded;
+}
+
 GraphSolveStats PlaneGraph::optimise(int window, int max_iterations) {
   const auto start = std::chrono::steady_clock::now();
   Impl& g = *impl_;
@@ -199,8 +208,10 @@ GraphSolveStats PlaneGraph::optimise(int window, int max_iterations) {
   std::unordered_set<int> free_planes;
   for (int i = first_free; i < n; ++i) {
     g.addKeyframeBlocks(problem, i, false, solve_costs);
-    for (int o : g.kfs[static_cast<std::size_t>(i)].observations)
-      free_planes.insert(g.observations[static_cast<std::size_t>(o)].plane);
+    for (int o : g.kfs[static_cast<std::size_t>(i)].observations) {
+      const Impl::Observation& obs = g.observations[static_cast<std::size_t>(o)];
+      if (!obs.excluded) free_planes.insert(obs.plane);
+    }
   }
   // Odometry edges that touch a free keyframe (the other end held fixed when older).
   for (const Impl::Edge& e : g.edges) {
@@ -227,6 +238,7 @@ GraphSolveStats PlaneGraph::optimise(int window, int max_iterations) {
     const std::size_t first_held = g.firstHeldObservation(l, first_free, held_cap);
     for (std::size_t i = 0; i < l.observations.size(); ++i) {
       const Impl::Observation& obs = g.observations[static_cast<std::size_t>(l.observations[i])];
+      if (obs.excluded) continue;
       if (i < first_held && obs.kf < first_free) {
         ++stats.held_observations_left_out;
         continue;

@@ -57,11 +57,18 @@ class PlaneGraph {
   /// the landmark, `covariance` of (a1, a2, d) in tangentBasis(n_kf). Returns its index.
   int addObservation(int kf, int plane, const Eigen::Vector3d& n_kf, double d_kf,
                      const Eigen::Matrix3d& covariance);
+  /// Leaves an observation out of every later solve (a wrong association:
+  /// a robust loss bounds its pull but does not remove it). Its chi2 is still
+  /// evaluated; a plane none of whose remaining observations is in a solve's
+  /// window is not free in that solve.
+  void excludeObservation(int observation);
+  bool observationExcluded(int observation) const;
 
   /// Levenberg-Marquardt from the current estimate: the newest `window`
   /// keyframes and the planes they see are free (window <= 0: everything).
   /// A free plane keeps every observation by the window's keyframes and the
-  /// newest GraphConfig::window_held_observations by older (held) ones.
+  /// newest GraphConfig::window_held_observations by older (held) ones;
+  /// excluded observations are in none.
   GraphSolveStats optimise(int window, int max_iterations);
 
   int keyframes() const;

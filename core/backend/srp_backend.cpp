@@ -254,6 +254,27 @@ struct SrpBackend::Impl {
     return out;
   }
 
+  /// An observation whose residual at the current estimate is beyond the
+  /// gate. A plane seen once is no association (its residual is the level
+  /// prior's).
+  bool isWrongAssociation(const ObservationRecord& o, double chi2) const {
+    return chi2 > config.graph.outlier_chi2 && graph.observationCount(o.plane) > 1;
+  }
+
+  /// Leaves the wrong associations at the current estimate out of later
+  /// solves; returns how many were newly left out.
+  int excludeWrongAssociations() {
+    int excluded = 0;
+    for (const ObservationRecord& o : observations) {
+      if (graph.observationExcluded(o.graph_index) ||
+          !isWrongAssociation(o, graph.observationChi2(o.graph_index)))
+        continue;
+      graph.excludeObservation(o.graph_index);
+      ++excluded;
+    }
+    return excluded;
+  }
+
   /// The global planes with their observations (after finish(): residuals of the final solve).
   PlaneMap planeMap() const {
     PlaneMap map;
@@ -282,7 +303,7 @@ struct SrpBackend::Impl {
       obs.points = o.points;
       obs.fit_rms = o.rms;
       obs.residual_chi2 = chi2;
-      obs.outlier = chi2 > config.graph.outlier_chi2 && graph.observationCount(o.plane) > 1;
+      obs.outlier = graph.observationExcluded(o.graph_index) || isWrongAssociation(o, chi2);
       map.planes[static_cast<std::size_t>(o.plane)].observations.push_back(std::move(obs));
     }
     return map;
@@ -320,16 +341,20 @@ SlamResult SrpBackend::finish(const Scan& last_deskewed) {
   std::vector<Eigen::Vector3f>().swap(m.keyframe_points);
   const auto t = Clock::now();
   m.levelFirstKeyframe();
-  if (m.config.graph.final_iterations > 0 && m.graph.observations() > 0)
+  if (m.config.graph.final_iterations > 0 && m.graph.observations() > 0) {
     m.graph.optimise(0, m.config.graph.final_iterations);
+    // The observations the solve shows to be wrong associations pull the
+    // graph even under the robust loss (Cauchy bounds an outlier's pull, it
+    // does not remove it): left out, and the graph solved once more.
+    if (m.excludeWrongAssociations() > 0) m.graph.optimise(0, m.config.graph.final_iterations);
+  }
   m.stats.ms_final_optimisation = msSince(t);
   m.observation_chi2.clear();
   m.stats.wrong_associations = 0;
   for (const auto& o : m.observations) {
     const double chi2 = m.graph.observationChi2(o.graph_index);
     m.observation_chi2.push_back(chi2);
-    // A plane seen once is no association (its residual is the level prior's).
-    if (chi2 > m.config.graph.outlier_chi2 && m.graph.observationCount(o.plane) > 1)
+    if (m.graph.observationExcluded(o.graph_index) || m.isWrongAssociation(o, chi2))
       ++m.stats.wrong_associations;
   }
   SlamResult result;

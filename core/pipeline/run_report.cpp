@@ -246,8 +246,8 @@ nlohmann::json backendJson(const Config& config, const std::optional<BackendStat
             {"rejected_pairs_by_gate", gates},
             {"wrong_associations", b.wrong_associations},
             {"wrong_associations_meaning",
-             "observations whose residual after the final solve exceeds graph.outlier_chi2 "
-             "(the robust loss down-weights them)"}}},
+             "observations whose residual after the end's whole-graph solve exceeds "
+             "graph.outlier_chi2: left out of one more whole-graph solve"}}},
           {"detected_planes_not_srp", planes},
           {"optimisations", b.optimisations},
           {"full_optimisations", b.full_optimisations},

@@ -116,6 +116,38 @@ TEST(PlaneGraph, InjectedWrongAssociationIsRobustifiedAndReported) {
     }
 }
 
+/// Largest difference of the keyframe positions of two graphs.
+double maxPositionDifference(const PlaneGraph& a, const PlaneGraph& b) {
+  double e = 0;
+  for (int i = 0; i < a.keyframes(); ++i)
+    e = std::max(e, (a.keyframePose(i).translation() - b.keyframePose(i).translation()).norm());
+  return e;
+}
+
+/// The robust loss bounds a wrong association's pull but does not remove it;
+/// an excluded observation is out of every later solve: the graph then
+/// solves to what it would be had the observation never been made.
+TEST(PlaneGraph, ExcludedObservationNoLongerPulls) {
+  const Fixture f;
+  PlaneGraph clean{GraphConfig{}}, g{GraphConfig{}};
+  build(clean, f, -1);
+  const int wrong = build(g, f, 15);
+  clean.optimise(0, 50);
+  const GraphSolveStats with = g.optimise(0, 50);
+  // Fixture property: under the loss the wrong observation still moves the
+  // poses (by ~0.08 mm; the solver's tolerance leaves ~1e-6 m).
+  const double pulled = maxPositionDifference(g, clean);
+  ASSERT_GT(pulled, 1e-5);
+  EXPECT_FALSE(g.observationExcluded(wrong));
+  g.excludeObservation(wrong);
+  EXPECT_TRUE(g.observationExcluded(wrong));
+  const GraphSolveStats without = g.optimise(0, 50);
+  EXPECT_EQ(without.residual_blocks, with.residual_blocks - 1);
+  EXPECT_LT(maxPositionDifference(g, clean), 0.05 * pulled);
+  // Still evaluated (reported), and still as wrong as it was.
+  EXPECT_GT(g.observationChi2(wrong), GraphConfig{}.outlier_chi2);
+}
+
 TEST(PlaneGraph, WindowedSolvesThenAFullSolveConverge) {
   const Fixture f;
   PlaneGraph g{GraphConfig{}};
