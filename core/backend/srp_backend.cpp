@@ -261,6 +261,12 @@ struct SrpBackend::Impl {
     return chi2 > config.graph.outlier_chi2 && graph.observationCount(o.plane) > 1;
   }
 
+  /// Reported as a wrong association: left out of the last solve, or beyond
+  /// the gate after it.
+  bool isOutlier(const ObservationRecord& o, double chi2) const {
+    return graph.observationExcluded(o.graph_index) || isWrongAssociation(o, chi2);
+  }
+
   /// Leaves the wrong associations at the current estimate out of later
   /// solves; returns how many were newly left out.
   int excludeWrongAssociations() {
@@ -303,7 +309,7 @@ struct SrpBackend::Impl {
       obs.points = o.points;
       obs.fit_rms = o.rms;
       obs.residual_chi2 = chi2;
-      obs.outlier = graph.observationExcluded(o.graph_index) || isWrongAssociation(o, chi2);
+      obs.outlier = isOutlier(o, chi2);
       map.planes[static_cast<std::size_t>(o.plane)].observations.push_back(std::move(obs));
     }
     return map;
@@ -354,8 +360,7 @@ SlamResult SrpBackend::finish(const Scan& last_deskewed) {
   for (const auto& o : m.observations) {
     const double chi2 = m.graph.observationChi2(o.graph_index);
     m.observation_chi2.push_back(chi2);
-    if (m.graph.observationExcluded(o.graph_index) || m.isWrongAssociation(o, chi2))
-      ++m.stats.wrong_associations;
+    if (m.isOutlier(o, chi2)) ++m.stats.wrong_associations;
   }
   SlamResult result;
   result.odometry = m.odometry();
