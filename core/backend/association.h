@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "backend/backend_config.h"
+#include "backend/plane_extent.h"
 #include "backend/srp_extraction.h"
 
 namespace storey::backend {
@@ -24,6 +25,8 @@ struct PlanePrediction {
   Eigen::Vector3d n_kf = Eigen::Vector3d::UnitZ();
   double d_kf = 0.0;     ///< [m]
   int observations = 0;  ///< keyframes that have seen it so far
+  /// Where it has been seen, in the keyframe frame (empty: anywhere).
+  PlaneExtent extent_kf;
 };
 
 enum class AssociationOutcome {
@@ -32,11 +35,14 @@ enum class AssociationOutcome {
   kAmbiguous,     ///< two landmarks fit nearly as well: not used
   kNearExisting,  ///< outside the gates but too close to a confirmed landmark (seen by at least
                   ///< `confirmed_observations` keyframes) to be a new plane: not used
+  kRoughFit,      ///< fit RMS above `max_rms_ratio` times the run's median (backend/fit_noise.h):
+                  ///< not used (decided before the association)
+  kCount
 };
 const char* toString(AssociationOutcome outcome);
 
 /// Why candidate pairs (SRP, landmark) failed; counted over all pairs.
-enum class GateReject { kFacing, kAngle, kDistance, kMahalanobis, kCount };
+enum class GateReject { kFacing, kAngle, kDistance, kMahalanobis, kExtent, kCount };
 const char* toString(GateReject reason);
 
 struct SrpAssociation {

@@ -29,9 +29,10 @@ struct BackendStats {
   std::int64_t keyframes = 0;
   std::int64_t srps = 0;  ///< SRPs extracted over all keyframes
   std::int64_t keyframes_without_srp = 0;
-  std::int64_t planes = 0;                 ///< global plane landmarks
-  std::int64_t observations = 0;           ///< plane observations in the graph
-  std::array<std::int64_t, 4> outcomes{};  ///< per AssociationOutcome
+  std::int64_t planes = 0;        ///< global plane landmarks
+  std::int64_t observations = 0;  ///< plane observations in the graph
+  std::array<std::int64_t, static_cast<std::size_t>(backend::AssociationOutcome::kCount)>
+      outcomes{};  ///< per AssociationOutcome
   std::array<std::int64_t, static_cast<std::size_t>(backend::GateReject::kCount)> gate_rejects{};
   std::array<std::int64_t, static_cast<std::size_t>(backend::PlaneReject::kCount)> plane_rejects{};
   std::int64_t wrong_associations = 0;  ///< observations beyond outlier_chi2 after the final solve
@@ -47,6 +48,7 @@ struct BackendStats {
   std::vector<double> ms_full_optimisation, ms_window_optimisation;  ///< the two kinds of solve
   std::vector<int> optimisation_keyframes;  ///< graph size at each optimisation
   double ms_final_optimisation = 0.0;
+  double srp_rms_median = 0.0;  ///< median fit RMS of all SRPs (the rough-fit gate's scale) [m]
 };
 
 /// What the back end decided for one scan.

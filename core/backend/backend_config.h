@@ -58,6 +58,16 @@ struct AssociationConfig {
   double new_plane_separation = 2.0;  ///< no new plane within this many gates of a known one [>= 1]
   int confirmed_observations =
       2;  ///< ... if that one was seen by at least this many keyframes [>= 1]
+  /// An SRP whose fit RMS exceeds this many times the median fit RMS of the
+  /// run's SRPs so far (after 20) is a rough fit (several surfaces, e.g. treads
+  /// near the sensor) and not used: neither matched nor a new plane [> 1; 0 = off]
+  /// (docs/method/backend.md, "Rough fits are not used")
+  double max_rms_ratio = 0.0;
+  /// A landmark is a candidate for an SRP (or keeps a new plane from being
+  /// made) only when the SRP's outline comes within this distance of where
+  /// the landmark has been seen (backend/plane_extent.h) [m, >= 0; 0 = off:
+  /// landmarks are infinite planes]
+  double max_extent_gap = 0.0;
 };
 
 /// The keyframe factor graph.

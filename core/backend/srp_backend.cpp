@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cmath>
 
+#include "backend/fit_noise.h"
 #include "backend/keyframe_rule.h"
 #include "backend/odometry_information.h"
 #include "backend/plane_graph.h"
@@ -15,6 +16,10 @@ namespace storey {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+// SRPs seen before the rough-fit gate acts: the median of fewer is not the
+// run's noise yet.
+constexpr int kFitNoiseMinSrps = 20;
+
 double msSince(Clock::time_point t) {
   return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
 }
@@ -52,10 +57,12 @@ struct SrpBackend::Impl {
   std::vector<ScanRecord> scans;
   std::vector<Keyframe> kfs;
   std::vector<ObservationRecord> observations;
-  std::vector<int> last_seen_kf;         // per landmark
-  std::vector<int> observation_count;    // per landmark
-  std::vector<double> observation_chi2;  // after finish()
-  int since_whole_solve = -1;            // optimisations since the last whole-graph one
+  std::vector<int> last_seen_kf;              // per landmark
+  std::vector<int> observation_count;         // per landmark
+  std::vector<backend::PlaneExtent> extents;  // per landmark: where seen (world)
+  std::vector<double> observation_chi2;       // after finish()
+  backend::FitNoise fit_noise;                // the run's SRP fit RMS (rough-fit gate)
+  int since_whole_solve = -1;                 // optimisations since the last whole-graph one
   // The graph's correction of the odometry as of the last solve:
   // T_world_lidar = T_world_odom * T_odom_lidar (the odometry's levelling of
   // its first scan until the first solve).
@@ -75,7 +82,8 @@ struct SrpBackend::Impl {
   BackendStats stats;
   bool finished = false;
 
-  explicit Impl(const BackendConfig& c) : config(c), graph(c.graph) {}
+  explicit Impl(const BackendConfig& c)
+      : config(c), graph(c.graph), fit_noise(c.association.max_rms_ratio, kFitNoiseMinSrps) {}
 
   bool isKeyframe(const Pose& T_world_lidar, double time) const {
     if (kfs.empty()) return true;
@@ -124,25 +132,39 @@ struct SrpBackend::Impl {
     for (std::size_t i = 0; i < stats.plane_rejects.size(); ++i)
       stats.plane_rejects[i] += srps.rejects[i];
 
-    // Association with the global plane map predicted in the keyframe.
+    // Rough fits (against the SRPs of the keyframes before) take no part in
+    // the association; every SRP then adds to the run's fit noise.
     t = Clock::now();
+    std::vector<backend::DetectedPlane> usable;
+    usable.reserve(srps.srps.size());
+    for (const backend::DetectedPlane& srp : srps.srps) {
+      if (fit_noise.rough(srp.rms))
+        ++stats.outcomes[static_cast<std::size_t>(backend::AssociationOutcome::kRoughFit)];
+      else
+        usable.push_back(srp);
+    }
+    for (const backend::DetectedPlane& srp : srps.srps) fit_noise.add(srp.rms);
+    stats.srp_rms_median = fit_noise.median();
+
+    // Association with the global plane map predicted in the keyframe.
     std::vector<backend::PlanePrediction> predictions;
     predictions.reserve(static_cast<std::size_t>(graph.landmarks()));
     const Eigen::Matrix3d R = T_pred.rotationMatrix();
     for (int j = 0; j < graph.landmarks(); ++j) {
       const backend::PlaneLandmark l = graph.landmark(j);
-      predictions.push_back({j, R.transpose() * l.n_world,
-                             l.d_world - l.n_world.dot(T_pred.translation()),
-                             observation_count[static_cast<std::size_t>(j)]});
+      predictions.push_back(
+          {j, R.transpose() * l.n_world, l.d_world - l.n_world.dot(T_pred.translation()),
+           observation_count[static_cast<std::size_t>(j)],
+           extents[static_cast<std::size_t>(j)].inFrame(R, T_pred.translation())});
     }
     const backend::AssociationResult assoc = backend::associate(
-        srps.srps, predictions, config.association, R.transpose() * Eigen::Vector3d::UnitZ());
+        usable, predictions, config.association, R.transpose() * Eigen::Vector3d::UnitZ());
     for (std::size_t i = 0; i < stats.gate_rejects.size(); ++i)
       stats.gate_rejects[i] += assoc.gate_rejects[i];
     bool constraint = false, revisit = false;
     const int window = config.graph.window_keyframes;
-    for (std::size_t i = 0; i < srps.srps.size(); ++i) {
-      const backend::DetectedPlane& srp = srps.srps[i];
+    for (std::size_t i = 0; i < usable.size(); ++i) {
+      const backend::DetectedPlane& srp = usable[i];
       const backend::SrpAssociation& a = assoc.srps[i];
       ++stats.outcomes[static_cast<std::size_t>(a.outcome)];
       int plane = -1;
@@ -157,6 +179,7 @@ struct SrpBackend::Impl {
             graph.addLandmark({n_world, srp.plane.distance() + n_world.dot(T_pred.translation())});
         last_seen_kf.push_back(kf_index);
         observation_count.push_back(0);
+        extents.emplace_back(n_world);
       } else {
         continue;
       }
@@ -170,6 +193,10 @@ struct SrpBackend::Impl {
           {kf_index, plane, o, srp.plane, srp.centroid, srp.hull, srp.points, srp.rms, a.chi2});
       last_seen_kf[static_cast<std::size_t>(plane)] = kf_index;
       ++observation_count[static_cast<std::size_t>(plane)];
+      std::vector<Eigen::Vector3d> core_world;
+      core_world.reserve(srp.core.size());
+      for (const Eigen::Vector3d& p : srp.core) core_world.push_back(T_pred * p);
+      extents[static_cast<std::size_t>(plane)].add(core_world);
     }
     stats.ms_association.push_back(msSince(t));
     stats.planes = graph.landmarks();

@@ -244,6 +244,10 @@ nlohmann::json backendJson(const Config& config, const std::optional<BackendStat
           {"association",
            {{"outcomes", outcomes},
             {"rejected_pairs_by_gate", gates},
+            {"srp_fit_rms_median_m", b.srp_rms_median},
+            {"rough_fit_meaning",
+             "SRPs whose fit RMS exceeds association.max_rms_ratio times the median fit RMS "
+             "of the SRPs before them: not used"},
             {"wrong_associations", b.wrong_associations},
             {"wrong_associations_meaning",
              "observations whose residual after the end's whole-graph solve exceeds "
