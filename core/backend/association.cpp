@@ -38,8 +38,6 @@ const char* toString(GateReject reason) {
       return "distance_gate";
     case GateReject::kMahalanobis:
       return "uncertainty_gate";
-    case GateReject::kExtent:
-      return "not_where_seen";
     case GateReject::kCount:
       break;
   }
@@ -100,12 +98,6 @@ AssociationResult associate(const std::vector<DetectedPlane>& srps,
     const Eigen::Matrix<double, 3, 2> B = tangentBasis(n_o);
     for (std::size_t j = 0; j < predictions.size(); ++j) {
       const PlanePrediction& p = predictions[j];
-      // A landmark is only a candidate (or in the way of a new plane) near
-      // where it has been seen.
-      if (config.max_extent_gap > 0 && p.extent_kf.gap(srps[i].core) > config.max_extent_gap) {
-        ++result.gate_rejects[static_cast<std::size_t>(GateReject::kExtent)];
-        continue;
-      }
       const double cos_angle = p.n_kf.dot(n_o);
       const double dd = p.d_kf - d_o;
       // Only a confirmed landmark keeps a new plane from being made next to it:

@@ -14,7 +14,6 @@
 #include <vector>
 
 #include "backend/backend_config.h"
-#include "backend/plane_extent.h"
 #include "backend/srp_extraction.h"
 
 namespace storey::backend {
@@ -25,8 +24,6 @@ struct PlanePrediction {
   Eigen::Vector3d n_kf = Eigen::Vector3d::UnitZ();
   double d_kf = 0.0;     ///< [m]
   int observations = 0;  ///< keyframes that have seen it so far
-  /// Where it has been seen, in the keyframe frame (empty: anywhere).
-  PlaneExtent extent_kf;
 };
 
 enum class AssociationOutcome {
@@ -42,7 +39,7 @@ enum class AssociationOutcome {
 const char* toString(AssociationOutcome outcome);
 
 /// Why candidate pairs (SRP, landmark) failed; counted over all pairs.
-enum class GateReject { kFacing, kAngle, kDistance, kMahalanobis, kExtent, kCount };
+enum class GateReject { kFacing, kAngle, kDistance, kMahalanobis, kCount };
 const char* toString(GateReject reason);
 
 struct SrpAssociation {

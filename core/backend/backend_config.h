@@ -63,11 +63,6 @@ struct AssociationConfig {
   /// near the sensor) and not used: neither matched nor a new plane [> 1; 0 = off]
   /// (docs/method/backend.md, "Rough fits are not used")
   double max_rms_ratio = 0.0;
-  /// A landmark is a candidate for an SRP (or keeps a new plane from being
-  /// made) only when the SRP's outline comes within this distance of where
-  /// the landmark has been seen (backend/plane_extent.h) [m, >= 0; 0 = off:
-  /// landmarks are infinite planes]
-  double max_extent_gap = 0.0;
 };
 
 /// The keyframe factor graph.

@@ -57,12 +57,11 @@ struct SrpBackend::Impl {
   std::vector<ScanRecord> scans;
   std::vector<Keyframe> kfs;
   std::vector<ObservationRecord> observations;
-  std::vector<int> last_seen_kf;              // per landmark
-  std::vector<int> observation_count;         // per landmark
-  std::vector<backend::PlaneExtent> extents;  // per landmark: where seen (world)
-  std::vector<double> observation_chi2;       // after finish()
-  backend::FitNoise fit_noise;                // the run's SRP fit RMS (rough-fit gate)
-  int since_whole_solve = -1;                 // optimisations since the last whole-graph one
+  std::vector<int> last_seen_kf;         // per landmark
+  std::vector<int> observation_count;    // per landmark
+  std::vector<double> observation_chi2;  // after finish()
+  backend::FitNoise fit_noise;           // the run's SRP fit RMS (rough-fit gate)
+  int since_whole_solve = -1;            // optimisations since the last whole-graph one
   // The graph's correction of the odometry as of the last solve:
   // T_world_lidar = T_world_odom * T_odom_lidar (the odometry's levelling of
   // its first scan until the first solve).
@@ -152,10 +151,9 @@ struct SrpBackend::Impl {
     const Eigen::Matrix3d R = T_pred.rotationMatrix();
     for (int j = 0; j < graph.landmarks(); ++j) {
       const backend::PlaneLandmark l = graph.landmark(j);
-      predictions.push_back(
-          {j, R.transpose() * l.n_world, l.d_world - l.n_world.dot(T_pred.translation()),
-           observation_count[static_cast<std::size_t>(j)],
-           extents[static_cast<std::size_t>(j)].inFrame(R, T_pred.translation())});
+      predictions.push_back({j, R.transpose() * l.n_world,
+                             l.d_world - l.n_world.dot(T_pred.translation()),
+                             observation_count[static_cast<std::size_t>(j)]});
     }
     const backend::AssociationResult assoc = backend::associate(
         usable, predictions, config.association, R.transpose() * Eigen::Vector3d::UnitZ());
@@ -179,7 +177,6 @@ struct SrpBackend::Impl {
             graph.addLandmark({n_world, srp.plane.distance() + n_world.dot(T_pred.translation())});
         last_seen_kf.push_back(kf_index);
         observation_count.push_back(0);
-        extents.emplace_back(n_world);
       } else {
         continue;
       }
@@ -193,10 +190,6 @@ struct SrpBackend::Impl {
           {kf_index, plane, o, srp.plane, srp.centroid, srp.hull, srp.points, srp.rms, a.chi2});
       last_seen_kf[static_cast<std::size_t>(plane)] = kf_index;
       ++observation_count[static_cast<std::size_t>(plane)];
-      std::vector<Eigen::Vector3d> core_world;
-      core_world.reserve(srp.core.size());
-      for (const Eigen::Vector3d& p : srp.core) core_world.push_back(T_pred * p);
-      extents[static_cast<std::size_t>(plane)].add(core_world);
     }
     stats.ms_association.push_back(msSince(t));
     stats.planes = graph.landmarks();

@@ -286,31 +286,6 @@ struct UnexplainedPoints {
 /// within three RANSAC distances of the sensor, or the median of the angle
 /// over its inliers is below `min_angle_deg` (a farther, larger cone). A
 /// real surface is not seen edge-on from everywhere.
-/// The corners of the rectangle holding the central 90 % of `inliers`
-/// along the two tangent axes of `plane`, on the plane.
-static std::vector<Eigen::Vector3d> coreRectangle(const std::vector<Eigen::Vector3d>& inliers,
-                                                  const Plane& plane) {
-  if (inliers.empty()) return {};
-  const Eigen::Matrix<double, 3, 2> B = tangentBasis(plane.normal());
-  std::vector<double> u, v;
-  u.reserve(inliers.size());
-  v.reserve(inliers.size());
-  for (const Eigen::Vector3d& p : inliers) {
-    u.push_back(B.col(0).dot(p));
-    v.push_back(B.col(1).dot(p));
-  }
-  auto quantile = [](std::vector<double>& x, double q) {
-    auto at = x.begin() + static_cast<std::ptrdiff_t>(q * static_cast<double>(x.size() - 1));
-    std::nth_element(x.begin(), at, x.end());
-    return *at;
-  };
-  const double u0 = quantile(u, 0.05), u1 = quantile(u, 0.95);
-  const double v0 = quantile(v, 0.05), v1 = quantile(v, 0.95);
-  const Eigen::Vector3d on_plane = plane.distance() * plane.normal();
-  return {on_plane + u0 * B.col(0) + v0 * B.col(1), on_plane + u1 * B.col(0) + v0 * B.col(1),
-          on_plane + u1 * B.col(0) + v1 * B.col(1), on_plane + u0 * B.col(0) + v1 * B.col(1)};
-}
-
 bool seenEdgeOn(const DetectedPlane& plane, const std::vector<Eigen::Vector3d>& inliers,
                 double min_angle_deg, double ransac_distance) {
   if (min_angle_deg <= 0.0 || inliers.empty()) return false;
@@ -440,7 +415,6 @@ SrpExtractionResult extractSrps(const std::vector<Eigen::Vector3f>& all_points,
       ++result.rejects[static_cast<int>(PlaneReject::kBeyondMaxSrps)];
     } else {
       plane.hull = planeHull(accepted_inliers[i], plane.plane);
-      plane.core = coreRectangle(accepted_inliers[i], plane.plane);
       result.srps.push_back(std::move(plane));
     }
   }

@@ -23,12 +23,6 @@ struct DetectedPlane {
   /// Outline: convex hull of the inliers on the plane (backend/plane_hull.h);
   /// filled for the SRPs [m].
   std::vector<Eigen::Vector3d> hull;
-  /// Where most of it is: the corners of the rectangle on the plane (in the
-  /// tangent basis of its normal) that holds the central 90 % of the inliers
-  /// along each axis; filled for the SRPs. A RANSAC band also picks up a few
-  /// points of a parallel surface far away (a wall 10 cm further out at the
-  /// other end of a corridor), which the hull includes [m].
-  std::vector<Eigen::Vector3d> core;
   /// Covariance of (a1, a2, d): n' = normalise(n + B (a1, a2)), d' = d + dd, with
   /// B = tangentBasis(n) [rad^2, rad m, m^2].
   Eigen::Matrix3d covariance = Eigen::Matrix3d::Identity();

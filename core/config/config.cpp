@@ -139,7 +139,6 @@ void visitBackend(V& v, BackendConfig& c) {
     a.field("new_plane_separation", x.new_plane_separation);
     a.field("confirmed_observations", x.confirmed_observations);
     a.field("max_rms_ratio", x.max_rms_ratio);
-    a.field("max_extent_gap", x.max_extent_gap);
   });
   v.section("graph", [&](auto& g) {
     GraphConfig& x = c.graph;

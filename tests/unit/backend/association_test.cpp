@@ -4,8 +4,6 @@
 // wall whose normal agrees with the rotation the other planes imply.
 #include <gtest/gtest.h>
 
-#include <cmath>
-
 #include "backend/association.h"
 
 namespace storey::backend {
@@ -21,12 +19,7 @@ DetectedPlane srp(const Eigen::Vector3d& n, double d, int points = 2000) {
 
 /// A landmark seen by `observations` keyframes (default: confirmed).
 PlanePrediction predicted(int id, const Eigen::Vector3d& n, double d, int observations = 5) {
-  PlanePrediction p;
-  p.landmark = id;
-  p.n_kf = n.normalized();
-  p.d_kf = d;
-  p.observations = observations;
-  return p;
+  return {id, n.normalized(), d, observations};
 }
 
 Eigen::Vector3d yawed(const Eigen::Vector3d& n, double deg) {
@@ -119,57 +112,6 @@ TEST(Association, APlaneSeenOnceDoesNotKeepARealOneOut) {
   strict.confirmed_observations = 1;
   EXPECT_EQ(associate({floor}, {predicted(0, {0, 0, -1}, 0.31, 1)}, strict).srps[0].outcome,
             AssociationOutcome::kNearExisting);
-}
-
-/// Outline of a wall x = d seen from the origin, over y in [y0, y1], z in [0, 3].
-std::vector<Eigen::Vector3d> wallHull(double d, double y0, double y1) {
-  return {{d, y0, 0}, {d, y1, 0}, {d, y1, 3}, {d, y0, 3}};
-}
-
-TEST(Association, ALandmarkIsACandidateOnlyWhereItWasSeen) {
-  // A stairwell wall (x = 2.0, seen for y in [0, 5]) and, 12 m down the
-  // corridor, a corridor wall facing the same way 0.1 m further out: within
-  // every gate of the stairwell wall, a different surface.
-  PlanePrediction stairwell = predicted(0, {1, 0, 0}, 2.0);
-  stairwell.extent_kf = PlaneExtent(Eigen::Vector3d::UnitX());
-  stairwell.extent_kf.add(wallHull(2.0, 0.0, 5.0));
-  DetectedPlane corridor = srp({1, 0, 0}, 2.1);
-  corridor.core = wallHull(2.1, -15.0, -12.0);
-  DetectedPlane next_to_it = srp({1, 0, 0}, 2.01);
-  next_to_it.core = wallHull(2.01, 5.5, 9.0);  // continues the wall seen: 0.5 m gap
-
-  // Infinite planes (off): the corridor wall is taken for the stairwell wall.
-  EXPECT_EQ(associate({corridor}, {stairwell}, AssociationConfig{}).srps[0].outcome,
-            AssociationOutcome::kMatched);
-  AssociationConfig bounded;
-  bounded.max_extent_gap = 2.0;
-  const AssociationResult r = associate({corridor, next_to_it}, {stairwell}, bounded);
-  EXPECT_EQ(r.srps[0].outcome, AssociationOutcome::kNewPlane);  // not even "near existing"
-  EXPECT_EQ(r.srps[1].outcome, AssociationOutcome::kMatched);
-  EXPECT_EQ(r.srps[1].landmark, 0);
-  EXPECT_EQ(r.gate_rejects[static_cast<std::size_t>(GateReject::kExtent)], 1);
-  // A landmark with no extent known (or an SRP without one) is tested as before.
-  EXPECT_EQ(associate({corridor}, {predicted(0, {1, 0, 0}, 2.0)}, bounded).srps[0].outcome,
-            AssociationOutcome::kMatched);
-}
-
-TEST(PlaneExtent, GapIsTheSameInEveryFrame) {
-  PlaneExtent world(Eigen::Vector3d(0.6, 0.8, 0.0));
-  const Eigen::Vector3d u = world.axis_u, v = world.axis_v;
-  world.add({{0, 0, 0}, {3.0 * u + 1.0 * v}});
-  const std::vector<Eigen::Vector3d> away{5.0 * u, 6.0 * u + 2.0 * v};  // 2 m along u
-  EXPECT_NEAR(world.gap(away), 2.0, 1e-12);
-  EXPECT_EQ(world.gap({1.0 * u + 0.5 * v, 9.0 * u}), 0.0);  // overlapping
-  EXPECT_NEAR(world.gap({-2.0 * u - 4.0 * v}), std::hypot(2.0, 4.0), 1e-12);
-  // The same in a keyframe frame (T_world_kf = R, t): the points moved into it.
-  const Eigen::Matrix3d R =
-      Eigen::AngleAxisd(0.7, Eigen::Vector3d(0.2, 0.3, 1.0).normalized()).toRotationMatrix();
-  const Eigen::Vector3d t(4.0, -2.0, 1.5);
-  const PlaneExtent kf = world.inFrame(R, t);
-  std::vector<Eigen::Vector3d> away_kf;
-  for (const Eigen::Vector3d& p : away) away_kf.push_back(R.transpose() * (p - t));
-  EXPECT_NEAR(kf.gap(away_kf), 2.0, 1e-9);
-  EXPECT_EQ(PlaneExtent(Eigen::Vector3d::UnitZ()).gap(away), 0.0);  // empty: no test
 }
 
 TEST(Association, TiltIsKnownBetterThanYaw) {
