@@ -88,7 +88,7 @@ struct GraphConfig {
   double tilt_prior_sigma = 0.0;     ///< every keyframe's roll/pitch held to the odometry's
                                      ///< gravity-levelled attitude with this std [rad]; 0 = off
   int max_iterations = 6;            ///< Levenberg-Marquardt iterations per keyframe [>= 1]
-  int window_keyframes = 40;         ///< newest keyframes optimised at each keyframe (older ones
+  int window_keyframes = 20;         ///< newest keyframes optimised at each keyframe (older ones
                                      ///< held fixed); 0 = always the whole graph [>= 0]
   /// Per plane free in a windowed solve, its observations by keyframes older
   /// than the window (held fixed) kept in the solve: the newest n [>= 0; 0 = all].
