@@ -174,6 +174,9 @@ int main(int argc, char** argv) {
       ->add_option("--max-dt", bias.max_time_difference,
                    "truth stamp tolerance at the ends of the truth [s]")
       ->capture_default_str();
+  bias_cmd->add_option("--storeys", bias.storeys_path,
+                       "the true storeys (the simulator's storeys.yaml): also summarise the "
+                       "scans on a storey and on the stairs apart");
   addCommonOptions(*bias_cmd, bias.common);
 
   RenderOptions render;

@@ -4,6 +4,7 @@
 
 #include "commands.h"
 #include "eval/registration_bias.h"
+#include "eval/storey_error.h"
 #include "io/log_reader.h"
 #include "options_config.h"
 #include "trajectory/tum.h"
@@ -18,6 +19,9 @@ int runRegistrationBias(const RegistrationBiasOptions& options) {
   bias.from = options.from;
   bias.to = options.to;
   bias.truth.max_time_difference = options.max_time_difference;
+  if (!options.storeys_path.empty())
+    for (const eval::StoreyLevel& level : eval::readTrueStoreys(options.storeys_path))
+      bias.floor_elevations.push_back(level.floor_elevation);
   const eval::RegistrationBiasResult result =
       eval::measureRegistrationBias(*log, truth, config.odometry, bias);
   std::cout << eval::registrationBiasTable(result);

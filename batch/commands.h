@@ -84,6 +84,7 @@ struct RegistrationBiasOptions {
   double from = 0.0;     ///< --from: seconds after the log's first scan
   double to = std::numeric_limits<double>::infinity();  ///< --to: same clock
   double max_time_difference = 0.01;                    ///< --max-dt: truth stamp tolerance [s]
+  std::string storeys_path;  ///< --storeys: true storeys (storeys.yaml): split storeys / stairs
 };
 
 struct BenchOptions {

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <optional>
 #include <ostream>
 #include <sstream>
@@ -122,21 +123,35 @@ RegistrationStep stepAtPose(const MatchResult& matches, const Pose& T_world_lida
   return step;
 }
 
+template <typename Keep>
+BiasSummary summariseSteps(const std::vector<RegistrationStep>& steps, Keep&& keep) {
+  BiasSummary out;
+  std::vector<double> abs_dz, abs_dp;
+  for (const RegistrationStep& s : steps) {
+    if (!keep(s)) continue;
+    ++out.scans;
+    out.mean_dp += s.dp;
+    abs_dz.push_back(std::abs(s.dp.z()));
+    abs_dp.push_back(s.dp.norm());
+    for (std::size_t c = 0; c < kPlaneClasses; ++c) out.class_mean_dz[c] += s.class_dz[c];
+  }
+  if (out.scans == 0) return out;
+  const double n = static_cast<double>(out.scans);
+  out.mean_dp /= n;
+  for (double& x : out.class_mean_dz) x /= n;
+  out.median_abs_dz = quantile(abs_dz, 0.5);
+  out.p95_abs_dp = quantile(abs_dp, 0.95);
+  return out;
+}
+
 void summarise(RegistrationBiasResult& result) {
   const auto& steps = result.steps;
   if (steps.empty()) return;
-  std::vector<double> abs_dz, abs_dp;
-  for (const RegistrationStep& s : steps) {
-    result.mean_dp += s.dp;
-    abs_dz.push_back(std::abs(s.dp.z()));
-    abs_dp.push_back(s.dp.norm());
-    for (std::size_t c = 0; c < kPlaneClasses; ++c) result.class_mean_dz[c] += s.class_dz[c];
-  }
-  const double n = static_cast<double>(steps.size());
-  result.mean_dp /= n;
-  for (double& x : result.class_mean_dz) x /= n;
-  result.median_abs_dz = quantile(abs_dz, 0.5);
-  result.p95_abs_dp = quantile(abs_dp, 0.95);
+  const BiasSummary all = summariseSteps(steps, [](const RegistrationStep&) { return true; });
+  result.mean_dp = all.mean_dp;
+  result.class_mean_dz = all.class_mean_dz;
+  result.median_abs_dz = all.median_abs_dz;
+  result.p95_abs_dp = all.p95_abs_dp;
 
   // One-second windows (disjoint, from the first evaluated scan).
   std::vector<BiasWindow> windows;
@@ -157,6 +172,34 @@ void summarise(RegistrationBiasResult& result) {
 }
 
 }  // namespace
+
+double heightAboveFloor(double z_lidar, const std::vector<double>& floor_elevations) {
+  double below = -std::numeric_limits<double>::infinity();
+  for (double f : floor_elevations)
+    if (f < z_lidar) below = std::max(below, f);
+  return std::isfinite(below) ? z_lidar - below : std::numeric_limits<double>::quiet_NaN();
+}
+
+void stairsSplit(RegistrationBiasResult& result, const std::vector<double>& floor_elevations,
+                 double tolerance) {
+  if (floor_elevations.empty() || result.steps.empty()) return;
+  std::vector<double> heights;
+  heights.reserve(result.steps.size());
+  for (const RegistrationStep& s : result.steps) {
+    const double h = heightAboveFloor(s.position_true.z(), floor_elevations);
+    if (std::isfinite(h)) heights.push_back(h);
+  }
+  result.split = true;
+  result.walking_height = heights.empty() ? 0.0 : quantile(heights, 0.5);
+  for (RegistrationStep& s : result.steps) {
+    const double h = heightAboveFloor(s.position_true.z(), floor_elevations);
+    s.on_stairs = !std::isfinite(h) || std::abs(h - result.walking_height) > tolerance;
+  }
+  result.on_storeys =
+      summariseSteps(result.steps, [](const RegistrationStep& s) { return !s.on_stairs; });
+  result.on_stairs =
+      summariseSteps(result.steps, [](const RegistrationStep& s) { return s.on_stairs; });
+}
 
 RegistrationBiasResult measureRegistrationBias(LogReader& log, const Trajectory& truth,
                                                const OdometryConfig& odo,
@@ -235,23 +278,26 @@ RegistrationBiasResult measureRegistrationBias(LogReader& log, const Trajectory&
     throw Error(os.str());
   }
   summarise(result);
+  stairsSplit(result, options.floor_elevations, options.storey_height_tolerance);
   return result;
 }
 
 void writeRegistrationBiasCsv(const std::string& path, const RegistrationBiasResult& result) {
   writeFileAtomically(path, [&](std::ostream& os) {
     os << "time,since_start,x_true,y_true,z_true,matches,floor_like,wall,slanted,ceiling_like,"
-          "dx,dy,dz,dtheta_x,dtheta_y,dtheta_z,dz_floor_like,dz_wall,dz_slanted,dz_ceiling_like\n";
+          "dx,dy,dz,dtheta_x,dtheta_y,dtheta_z,dz_floor_like,dz_wall,dz_slanted,dz_ceiling_like,"
+          "on_stairs\n";
     char line[512];
     for (const RegistrationStep& s : result.steps) {
       std::snprintf(
           line, sizeof(line),
           "%.6f,%.3f,%.4f,%.4f,%.4f,%d,%d,%d,%d,%d,%.5f,%.5f,%.5f,%.6f,%.6f,%.6f,%.5f,%.5f,"
-          "%.5f,%.5f\n",
+          "%.5f,%.5f,%s\n",
           s.time, s.since_start, s.position_true.x(), s.position_true.y(), s.position_true.z(),
           s.matches, s.class_matches[0], s.class_matches[1], s.class_matches[2], s.class_matches[3],
           s.dp.x(), s.dp.y(), s.dp.z(), s.dtheta.x(), s.dtheta.y(), s.dtheta.z(), s.class_dz[0],
-          s.class_dz[1], s.class_dz[2], s.class_dz[3]);
+          s.class_dz[1], s.class_dz[2], s.class_dz[3],
+          result.split ? (s.on_stairs ? "1" : "0") : "");
       os << line;
     }
   });
@@ -277,7 +323,27 @@ std::string registrationBiasTable(const RegistrationBiasResult& r) {
                   r.class_mean_dz[c]);
     os << line;
   }
-  os << " m\n  one-second windows with the largest mean dz (start s, true z m, mean dz m, "
+  os << " m\n";
+  if (r.split) {
+    std::snprintf(line, sizeof(line),
+                  "  split by the true storeys (LiDAR usually %.2f m above its floor):\n",
+                  r.walking_height);
+    os << line;
+    const auto group = [&](const char* name, const BiasSummary& b) {
+      std::snprintf(line, sizeof(line),
+                    "    %-11s %5zu scans, mean dz %+.4f m, median |dz| %.4f m, by plane", name,
+                    b.scans, b.mean_dp.z(), b.median_abs_dz);
+      os << line;
+      for (std::size_t c = 0; c < kPlaneClasses; ++c) {
+        std::snprintf(line, sizeof(line), " %+.4f", b.class_mean_dz[c]);
+        os << line;
+      }
+      os << " m\n";
+    };
+    group("on storeys", r.on_storeys);
+    group("on stairs", r.on_stairs);
+  }
+  os << "  one-second windows with the largest mean dz (start s, true z m, mean dz m, "
         "scans):\n";
   for (const BiasWindow& w : r.worst_windows) {
     std::snprintf(line, sizeof(line), "    %9.1f %8.2f %+8.4f %4d\n", w.since_start, w.z_true,

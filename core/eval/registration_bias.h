@@ -39,6 +39,13 @@ struct RegistrationBiasOptions {
   double from = 0.0;  ///< first scan evaluated, seconds after the first scan of the log
   double to = std::numeric_limits<double>::infinity();  ///< last one, same clock [s]
   AssociationOptions truth;  ///< how the truth is looked up at a time (as `storey eval` does)
+  /// True floor elevations of the storeys (world z, top of the slab [m], e.g.
+  /// the simulator's storeys.yaml); with them the steps are also summarised
+  /// apart for the scans on a storey and on the stairs (stairsSplit()). Empty: no split.
+  std::vector<double> floor_elevations;
+  /// A scan is on a storey when the LiDAR's height above the floor below it is
+  /// within this of the walk's usual height above its floor [m].
+  double storey_height_tolerance = 0.15;
 };
 
 /// One scan: the step from its true pose.
@@ -51,6 +58,16 @@ struct RegistrationStep {
   Eigen::Vector3d dp = Eigen::Vector3d::Zero();             ///< translation step, world [m]
   Eigen::Vector3d dtheta = Eigen::Vector3d::Zero();         ///< rotation step, world [rad]
   std::array<double, kPlaneClasses> class_dz{};  ///< z of the step each class alone would cause [m]
+  bool on_stairs = false;                        ///< between storeys (only with floor elevations)
+};
+
+/// The steps of a set of scans in a few numbers.
+struct BiasSummary {
+  std::size_t scans = 0;
+  Eigen::Vector3d mean_dp = Eigen::Vector3d::Zero();  ///< [m]
+  double median_abs_dz = 0.0;                         ///< [m]
+  double p95_abs_dp = 0.0;                            ///< 95th percentile of |dp| [m]
+  std::array<double, kPlaneClasses> class_mean_dz{};  ///< mean of class_dz per class [m]
 };
 
 /// A one-second stretch with a large mean vertical step.
@@ -71,7 +88,24 @@ struct RegistrationBiasResult {
   double p95_abs_dp = 0.0;                            ///< 95th percentile of |dp| [m]
   std::array<double, kPlaneClasses> class_mean_dz{};  ///< mean of class_dz per class [m]
   std::vector<BiasWindow> worst_windows;  ///< up to 5 one-second windows, largest |mean_dz| first
+  /// With floor elevations: the split of the steps (RegistrationStep::on_stairs).
+  bool split = false;
+  double walking_height = 0.0;  ///< median LiDAR height above the floor below it [m]
+  BiasSummary on_storeys, on_stairs;
 };
+
+/// The LiDAR's height above the highest of `floor_elevations` below
+/// `z_lidar` (sorted or not); NaN when no floor is below it [m].
+double heightAboveFloor(double z_lidar, const std::vector<double>& floor_elevations);
+
+/// Marks every step on_stairs or not and fills result.split, walking_height,
+/// on_storeys and on_stairs: the walk's usual height above its floor is the
+/// median of heightAboveFloor over the steps (a walk spends most of its time
+/// on storeys); a step whose height differs from it by more than
+/// `tolerance`, or that has no floor below it, is on the stairs (flights,
+/// half landings). Nothing happens without floors.
+void stairsSplit(RegistrationBiasResult& result, const std::vector<double>& floor_elevations,
+                 double tolerance);
 
 /// Runs the measurement over a log. `truth` is the LiDAR's true trajectory
 /// (T_world_lidar, TUM, e.g. the simulator's groundtruth_lidar.tum). Throws

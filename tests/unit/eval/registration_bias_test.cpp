@@ -3,7 +3,9 @@
 // found with that offset; a truth on another clock is an error that says so.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <fstream>
+#include <sstream>
 #include <string>
 
 #include "common/error.h"
@@ -102,10 +104,12 @@ TEST_F(RegistrationBias, RunsAsAProgramAndNamesABadTruthFile) {
   const test::RunResult ok = test::runStorey(
       "registration-bias " + test::shellQuoted(bag()) + " --gt " +
           test::shellQuoted(simFile(sim::kLidarTruthFile)) + " --calibration " + calibration +
-          " --from 2 --to 4 --csv " + test::shellQuoted(file("cli.csv")),
+          " --from 2 --to 4 --csv " + test::shellQuoted(file("cli.csv")) + " --storeys " +
+          test::shellQuoted(simFile(sim::kStoreysFile)),
       file(""));
   EXPECT_EQ(ok.exit_code, 0) << ok.err;
   EXPECT_NE(ok.out.find("scans evaluated 2"), std::string::npos) << ok.out;  // 20 or 21 scans
+  EXPECT_NE(ok.out.find("split by the true storeys"), std::string::npos) << ok.out;
   EXPECT_TRUE(std::ifstream(file("cli.csv")).good());
 
   const std::string missing = file("no_such_truth.tum");
@@ -115,6 +119,69 @@ TEST_F(RegistrationBias, RunsAsAProgramAndNamesABadTruthFile) {
                       file(""));
   EXPECT_EQ(bad.exit_code, 1);
   EXPECT_NE(bad.err.find("no_such_truth.tum"), std::string::npos) << bad.err;
+}
+
+// The split by the true storeys, on made-up steps: floors at 0 and 3 m, a
+// walk carried 1.4 m above its floor, with a climb between them.
+RegistrationStep stepAt(double z, double dz) {
+  RegistrationStep s;
+  s.position_true = Eigen::Vector3d(0.0, 0.0, z);
+  s.dp = Eigen::Vector3d(0.0, 0.0, dz);
+  s.class_dz = {dz, 0.0, 0.0, 0.0};
+  return s;
+}
+
+TEST(RegistrationBiasSplit, HeightIsAboveTheHighestFloorBelowTheLidar) {
+  const std::vector<double> floors = {6.0, -1.4, 2.3};  // any order
+  EXPECT_DOUBLE_EQ(heightAboveFloor(0.0, floors), 1.4);
+  EXPECT_DOUBLE_EQ(heightAboveFloor(2.3, floors), 3.7);  // a floor at the LiDAR is not below it
+  EXPECT_NEAR(heightAboveFloor(7.5, floors), 1.5, 1e-12);
+  EXPECT_TRUE(std::isnan(heightAboveFloor(-2.0, floors)));
+  EXPECT_TRUE(std::isnan(heightAboveFloor(1.0, {})));
+}
+
+TEST(RegistrationBiasSplit, ScansBetweenTheStoreysWalkingHeightsAreOnTheStairs) {
+  RegistrationBiasResult r;
+  for (int i = 0; i < 10; ++i) r.steps.push_back(stepAt(1.4 + 0.01 * (i % 3), 0.001));  // storey 0
+  for (int i = 0; i < 10; ++i) r.steps.push_back(stepAt(4.4 - 0.01 * (i % 3), 0.003));  // storey 1
+  const double climb[] = {1.7, 2.2, 2.9, 3.1, 3.9};  // flights and a half landing
+  for (double z : climb) r.steps.push_back(stepAt(z, 0.02));
+  r.steps.push_back(stepAt(-0.5, 0.02));  // no floor below: not on a storey
+  stairsSplit(r, {0.0, 3.0}, 0.15);
+  ASSERT_TRUE(r.split);
+  EXPECT_NEAR(r.walking_height, 1.4, 0.011);
+  EXPECT_EQ(r.on_storeys.scans, 20u);
+  EXPECT_EQ(r.on_stairs.scans, 6u);
+  EXPECT_NEAR(r.on_storeys.mean_dp.z(), 0.002, 1e-12);
+  EXPECT_NEAR(r.on_stairs.mean_dp.z(), 0.02, 1e-12);
+  EXPECT_NEAR(r.on_stairs.class_mean_dz[0], 0.02, 1e-12);
+  EXPECT_NEAR(r.on_stairs.median_abs_dz, 0.02, 1e-12);
+  for (std::size_t i = 0; i < r.steps.size(); ++i) EXPECT_EQ(r.steps[i].on_stairs, i >= 20) << i;
+  EXPECT_NE(registrationBiasTable(r).find("on stairs       6 scans, mean dz +0.0200 m"),
+            std::string::npos)
+      << registrationBiasTable(r);
+}
+
+TEST(RegistrationBiasSplit, WithoutFloorsNothingIsSplitAndTheCsvColumnIsEmpty) {
+  RegistrationBiasResult r;
+  r.steps = {stepAt(1.0, 0.0), stepAt(2.0, 0.0)};
+  stairsSplit(r, {}, 0.15);
+  EXPECT_FALSE(r.split);
+  EXPECT_EQ(registrationBiasTable(r).find("split by"), std::string::npos);
+  const std::string path = testing::TempDir() + "/registration_bias_split.csv";
+  writeRegistrationBiasCsv(path, r);
+  std::ifstream in(path);
+  std::string header, line;
+  std::getline(in, header);
+  EXPECT_EQ(header.substr(header.rfind(',') + 1), "on_stairs");
+  std::getline(in, line);
+  EXPECT_EQ(line.back(), ',');  // the column is there, empty
+  stairsSplit(r, {0.0}, 0.15);
+  writeRegistrationBiasCsv(path, r);
+  std::ifstream again(path);
+  std::getline(again, header);
+  std::getline(again, line);
+  EXPECT_EQ(line.substr(line.rfind(',') + 1), "0");  // the first one sets the usual height
 }
 
 }  // namespace
