@@ -174,6 +174,10 @@ int main(int argc, char** argv) {
       ->add_option("--max-dt", bias.max_time_difference,
                    "truth stamp tolerance at the ends of the truth [s]")
       ->capture_default_str();
+  bias_cmd->add_option("--gt-imu", bias.gt_imu_path,
+                       "the IMU's true trajectory at its rate (TUM, e.g. groundtruth_imu.tum): "
+                       "each point deskewed with its own true pose (needs the calibration's "
+                       "T_imu_lidar)");
   bias_cmd->add_option("--storeys", bias.storeys_path,
                        "the true storeys (the simulator's storeys.yaml): also summarise the "
                        "scans on a storey and on the stairs apart");

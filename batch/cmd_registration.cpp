@@ -19,6 +19,12 @@ int runRegistrationBias(const RegistrationBiasOptions& options) {
   bias.from = options.from;
   bias.to = options.to;
   bias.truth.max_time_difference = options.max_time_difference;
+  Trajectory imu_truth;
+  if (!options.gt_imu_path.empty()) {
+    imu_truth = readTum(options.gt_imu_path);
+    bias.imu_truth = &imu_truth;
+    bias.T_imu_lidar = config.sensor.T_imu_lidar;
+  }
   if (!options.storeys_path.empty())
     for (const eval::StoreyLevel& level : eval::readTrueStoreys(options.storeys_path))
       bias.floor_elevations.push_back(level.floor_elevation);

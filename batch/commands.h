@@ -85,6 +85,7 @@ struct RegistrationBiasOptions {
   double to = std::numeric_limits<double>::infinity();  ///< --to: same clock
   double max_time_difference = 0.01;                    ///< --max-dt: truth stamp tolerance [s]
   std::string storeys_path;  ///< --storeys: true storeys (storeys.yaml): split storeys / stairs
+  std::string gt_imu_path;   ///< --gt-imu: the IMU's true trajectory (TUM): exact deskew
 };
 
 struct BenchOptions {

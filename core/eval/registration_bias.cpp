@@ -1,6 +1,7 @@
 #include "eval/registration_bias.h"
 
 #include <Eigen/Cholesky>
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -52,10 +53,50 @@ std::optional<Pose> truePose(const Trajectory& truth, double t, const Associatio
 
 /// The scan with every point moved to the scan's stamp with the true motion
 /// (T_lidar(stamp)^-1 T_lidar(stamp + point time)); nothing when the truth
-/// does not cover the scan.
+/// does not cover the scan. With `imu_truth` (T_world_imu at the IMU's rate)
+/// every point gets its own true pose, T_world_imu(t) T_imu_lidar; without
+/// it the LiDAR truth (one pose a scan) is interpolated between the first
+/// and the last firing time, which misses the motion's curvature within the
+/// revolution (a hand-held sensor's sway: a few mrad).
 std::optional<Scan> deskewWithTruth(const Scan& scan, const Trajectory& truth,
+                                    const Trajectory* imu_truth, const Pose& T_imu_lidar,
                                     const AssociationOptions& options, Pose& T_world_lidar) {
   const double stamp = nsToSeconds(scan.stamp_ns);
+  Scan out = scan;
+  if (imu_truth != nullptr) {
+    const std::optional<Pose> imu_at_stamp = truePose(*imu_truth, stamp, options);
+    if (!imu_at_stamp) return std::nullopt;
+    T_world_lidar = *imu_at_stamp * T_imu_lidar;
+    // Both truths describe one motion: a calibration that is not the
+    // simulation's shows here, not as a bias.
+    if (const std::optional<Pose> lidar_at_stamp = truePose(truth, stamp, options)) {
+      const Pose T_delta = lidar_at_stamp->inverse() * T_world_lidar;
+      const double angle = Eigen::AngleAxisd(T_delta.rotation()).angle();
+      if (T_delta.translation().norm() > 0.01 || angle > 0.01) {
+        char message[256];
+        std::snprintf(message, sizeof(message),
+                      "registration bias: the IMU truth with the calibration's T_imu_lidar puts "
+                      "the LiDAR %.3f m and %.4f rad away from the LiDAR truth at t = %.3f s; "
+                      "is --calibration the walk's?",
+                      T_delta.translation().norm(), angle, stamp);
+        throw Error(message);
+      }
+    }
+    const Pose T_ref_world = T_world_lidar.inverse();
+    // The points of one firing share a time: one lookup for them.
+    double last_time = std::numeric_limits<double>::quiet_NaN();
+    Pose T_ref_lidar;
+    for (ScanPoint& p : out.points) {
+      if (!(p.time == last_time)) {
+        const std::optional<Pose> imu_at = truePose(*imu_truth, stamp + p.time, options);
+        if (!imu_at) return std::nullopt;
+        T_ref_lidar = T_ref_world * (*imu_at * T_imu_lidar);
+        last_time = p.time;
+      }
+      p.p = (T_ref_lidar * p.p.cast<double>()).cast<float>();
+    }
+    return out;
+  }
   const std::optional<Pose> at_stamp = truePose(truth, stamp, options);
   if (!at_stamp) return std::nullopt;
   T_world_lidar = *at_stamp;
@@ -66,9 +107,6 @@ std::optional<Scan> deskewWithTruth(const Scan& scan, const Trajectory& truth,
   const Pose T_ref_world = at_stamp->inverse();
   const StampedPose a{stamp + first, T_ref_world * *at_first};
   const StampedPose b{stamp + last, T_ref_world * *at_last};
-  // Within one revolution (0.1 s) the motion is interpolated between the
-  // poses at the first and the last firing time.
-  Scan out = scan;
   for (ScanPoint& p : out.points) {
     const Pose T_ref_lidar = interpolatePose(a, b, stamp + p.time);
     p.p = (T_ref_lidar * p.p.cast<double>()).cast<float>();
@@ -231,8 +269,8 @@ RegistrationBiasResult measureRegistrationBias(LogReader& log, const Trajectory&
     const double since_start = stamp - *first_stamp;
     if (since_start > options.to) break;
     Pose T_world_lidar;
-    const std::optional<Scan> deskewed =
-        deskewWithTruth(*scan, truth, options.truth, T_world_lidar);
+    const std::optional<Scan> deskewed = deskewWithTruth(
+        *scan, truth, options.imu_truth, options.T_imu_lidar, options.truth, T_world_lidar);
     if (!deskewed) {
       ++result.scans_without_truth;
       continue;

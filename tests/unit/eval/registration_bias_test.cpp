@@ -74,6 +74,41 @@ TEST_F(RegistrationBias, APoseMovedUpIsPulledBackDown) {
     EXPECT_GE(std::abs(r.worst_windows[i - 1].mean_dz), std::abs(r.worst_windows[i].mean_dz));
 }
 
+TEST_F(RegistrationBias, WithTheImuTruthEveryPointHasItsOwnTruePose) {
+  const Config config = simConfig();
+  const Trajectory lidar_truth = truth();
+  const Trajectory imu_truth = readTum(simFile(sim::kImuTruthFile));
+  RegistrationBiasOptions options;
+  options.imu_truth = &imu_truth;
+  options.T_imu_lidar = config.sensor.T_imu_lidar;
+  const auto log = openLog(bag(), config.input, config.sensor);
+  const RegistrationBiasResult r =
+      measureRegistrationBias(*log, lidar_truth, config.odometry, options);
+  const RegistrationBiasResult coarse = measure(lidar_truth);
+  // The same scans (the IMU truth may also cover the last revolution) at the
+  // same poses from both truths.
+  ASSERT_GE(r.steps.size(), coarse.steps.size());
+  ASSERT_LE(r.steps.size(), coarse.steps.size() + 1);
+  for (std::size_t i = 0; i < coarse.steps.size(); ++i) {
+    ASSERT_EQ(r.steps[i].time, coarse.steps[i].time) << i;
+    ASSERT_LT((r.steps[i].position_true - coarse.steps[i].position_true).norm(), 1e-3) << i;
+  }
+  for (int i = 0; i < 3; ++i) EXPECT_LT(std::abs(r.mean_dp(i)), 0.004) << i;
+  EXPECT_LT(r.median_abs_dz, 0.004);
+
+  // A calibration that is not the walk's is named, not measured as a bias.
+  options.T_imu_lidar =
+      Pose(config.sensor.T_imu_lidar.rotation(),
+           config.sensor.T_imu_lidar.translation() + Eigen::Vector3d(0.0, 0.0, 0.05));
+  const auto again = openLog(bag(), config.input, config.sensor);
+  try {
+    measureRegistrationBias(*again, lidar_truth, config.odometry, options);
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("T_imu_lidar"), std::string::npos) << e.what();
+  }
+}
+
 TEST_F(RegistrationBias, ATruthOnAnotherClockIsAnError) {
   Trajectory shifted = truth();
   for (StampedPose& p : shifted) p.time += 1000.0;
@@ -105,7 +140,8 @@ TEST_F(RegistrationBias, RunsAsAProgramAndNamesABadTruthFile) {
       "registration-bias " + test::shellQuoted(bag()) + " --gt " +
           test::shellQuoted(simFile(sim::kLidarTruthFile)) + " --calibration " + calibration +
           " --from 2 --to 4 --csv " + test::shellQuoted(file("cli.csv")) + " --storeys " +
-          test::shellQuoted(simFile(sim::kStoreysFile)),
+          test::shellQuoted(simFile(sim::kStoreysFile)) + " --gt-imu " +
+          test::shellQuoted(simFile(sim::kImuTruthFile)),
       file(""));
   EXPECT_EQ(ok.exit_code, 0) << ok.err;
   EXPECT_NE(ok.out.find("scans evaluated 2"), std::string::npos) << ok.out;  // 20 or 21 scans
