@@ -1,7 +1,9 @@
 #include "backend/srp_backend.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <utility>
 
 #include "backend/fit_noise.h"
 #include "backend/keyframe_rule.h"
@@ -124,7 +126,7 @@ struct SrpBackend::Impl {
 
     // SRP extraction on the deskewed scan.
     auto t = Clock::now();
-    const backend::SrpExtractionResult srps = backend::extractSrps(points, config.extraction);
+    backend::SrpExtractionResult srps = backend::extractSrps(points, config.extraction);
     stats.ms_extraction.push_back(msSince(t));
     stats.srps += static_cast<std::int64_t>(srps.srps.size());
     if (srps.srps.empty()) ++stats.keyframes_without_srp;
@@ -134,15 +136,21 @@ struct SrpBackend::Impl {
     // Rough fits (against the SRPs of the keyframes before) take no part in
     // the association; every SRP then adds to the run's fit noise.
     t = Clock::now();
-    std::vector<backend::DetectedPlane> usable;
-    usable.reserve(srps.srps.size());
-    for (const backend::DetectedPlane& srp : srps.srps) {
-      if (fit_noise.rough(srp.rms))
-        ++stats.outcomes[static_cast<std::size_t>(backend::AssociationOutcome::kRoughFit)];
-      else
-        usable.push_back(srp);
-    }
-    for (const backend::DetectedPlane& srp : srps.srps) fit_noise.add(srp.rms);
+    // (The SRPs are moved, not copied: their outlines are the bulk.)
+    std::vector<double> fit_rms;
+    fit_rms.reserve(srps.srps.size());
+    for (const backend::DetectedPlane& srp : srps.srps) fit_rms.push_back(srp.rms);
+    std::vector<backend::DetectedPlane> usable = std::move(srps.srps);
+    usable.erase(
+        std::remove_if(
+            usable.begin(), usable.end(),
+            [&](const backend::DetectedPlane& srp) {
+              if (!fit_noise.rough(srp.rms)) return false;
+              ++stats.outcomes[static_cast<std::size_t>(backend::AssociationOutcome::kRoughFit)];
+              return true;
+            }),
+        usable.end());
+    for (double rms : fit_rms) fit_noise.add(rms);
     stats.srp_rms_median = fit_noise.median();
 
     // Association with the global plane map predicted in the keyframe.

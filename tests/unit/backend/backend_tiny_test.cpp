@@ -126,6 +126,27 @@ TEST_F(BackendTiny, OptimisedTrajectoryIsAccurateAndOutputsAreComplete) {
   EXPECT_LE(flagged, observations / 10);
 }
 
+TEST_F(BackendTiny, RoughFitsTakeNoPartInTheAssociation) {
+  // A ratio just above 1: after the first 20 SRPs, those fitted worse than
+  // the median of the SRPs before them are left out; every SRP still has
+  // exactly one outcome.
+  Config c = config(true);
+  c.backend.association.max_rms_ratio = 1.0001;
+  const std::string out = file("out_rough");
+  const PipelineResult r = runPipeline(bag(), c, out);
+  ASSERT_FALSE(r.trajectory.empty());
+  std::ifstream in(std::filesystem::path(out) / "report.json");
+  const nlohmann::json report = nlohmann::json::parse(in);
+  const nlohmann::json& association = report.at("backend").at("association");
+  const int srps = report.at("backend").at("srps").get<int>();
+  ASSERT_GT(srps, 21);
+  int outcomes = 0;
+  for (const auto& [name, count] : association.at("outcomes").items()) outcomes += count.get<int>();
+  EXPECT_EQ(outcomes, srps);
+  EXPECT_GE(association.at("outcomes").at("rough_fit").get<int>(), 1);
+  EXPECT_LE(association.at("outcomes").at("rough_fit").get<int>(), srps - 20);
+}
+
 TEST_F(BackendTiny, NoSrpKeepsTheOdometry) {
   const std::string out = file("out_nosrp");
   const PipelineResult r = runPipeline(bag(), config(false), out);
