@@ -9,6 +9,7 @@
 #include <optional>
 #include <ostream>
 #include <sstream>
+#include <utility>
 #include <variant>
 
 #include "common/atomic_file.h"
@@ -221,18 +222,17 @@ double heightAboveFloor(double z_lidar, const std::vector<double>& floor_elevati
 void stairsSplit(RegistrationBiasResult& result, const std::vector<double>& floor_elevations,
                  double tolerance) {
   if (floor_elevations.empty() || result.steps.empty()) return;
-  std::vector<double> heights;
+  std::vector<double> heights, finite;  // per step (NaN: no floor below); the finite ones
   heights.reserve(result.steps.size());
   for (const RegistrationStep& s : result.steps) {
-    const double h = heightAboveFloor(s.position_true.z(), floor_elevations);
-    if (std::isfinite(h)) heights.push_back(h);
+    heights.push_back(heightAboveFloor(s.position_true.z(), floor_elevations));
+    if (std::isfinite(heights.back())) finite.push_back(heights.back());
   }
   result.split = true;
-  result.walking_height = heights.empty() ? 0.0 : quantile(heights, 0.5);
-  for (RegistrationStep& s : result.steps) {
-    const double h = heightAboveFloor(s.position_true.z(), floor_elevations);
-    s.on_stairs = !std::isfinite(h) || std::abs(h - result.walking_height) > tolerance;
-  }
+  result.walking_height = finite.empty() ? 0.0 : quantile(std::move(finite), 0.5);
+  for (std::size_t i = 0; i < result.steps.size(); ++i)
+    result.steps[i].on_stairs =
+        !std::isfinite(heights[i]) || std::abs(heights[i] - result.walking_height) > tolerance;
   result.on_storeys =
       summariseSteps(result.steps, [](const RegistrationStep& s) { return !s.on_stairs; });
   result.on_stairs =
