@@ -59,6 +59,7 @@ void visitOdometry(V& v, OdometryConfig& c) {
   v.field("prior_accel_bias_sigma", c.prior_accel_bias_sigma);
   v.field("pose_sigma_translation", c.pose_sigma_translation);
   v.field("pose_sigma_rotation", c.pose_sigma_rotation);
+  v.field("marginalise_pose", c.marginalise_pose);
   v.field("max_scan_gap", c.max_scan_gap);
   v.section("features", [&](auto& f) {
     FeatureConfig& fc = c.features;

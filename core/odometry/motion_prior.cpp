@@ -45,11 +45,10 @@ MotionPrior diagonalMotionPrior(const Vector9d& motion, const Eigen::Vector2d& t
   return prior;
 }
 
-MotionPrior propagateMotionPrior(const MotionPrior& prior_i, const ImuGravityFactor& factor,
-                                 const double* pose_i, const double* motion_i,
-                                 const double* pose_j, const double* motion_j,
-                                 const double* tilt, double pose_sigma_translation,
-                                 double pose_sigma_rotation) {
+Eigen::Matrix<double, 32, 32> imuFactorInformation(const ImuGravityFactor& factor,
+                                                   const double* pose_i, const double* motion_i,
+                                                   const double* pose_j, const double* motion_j,
+                                                   const double* tilt) {
   using RowMajor15x9 = Eigen::Matrix<double, 15, 9, Eigen::RowMajor>;
   using RowMajor15x7 = Eigen::Matrix<double, 15, 7, Eigen::RowMajor>;
   using RowMajor15x2 = Eigen::Matrix<double, 15, 2, Eigen::RowMajor>;
@@ -72,14 +71,23 @@ MotionPrior propagateMotionPrior(const MotionPrior& prior_i, const ImuGravityFac
   Eigen::Matrix<double, 15, 32> J;
   J << J_pose_i * P_i, J_motion_i, J_pose_j * P_j, J_motion_j, J_tilt;
 
-  Eigen::Matrix<double, 32, 32> H = J.transpose() * J;
+  return J.transpose() * J;
+}
+
+MotionPrior propagateMotionPrior(const MotionPrior& prior_i, const ImuGravityFactor& factor,
+                                 const double* pose_i, const double* motion_i, const double* pose_j,
+                                 const double* motion_j, const double* tilt,
+                                 double pose_sigma_translation, double pose_sigma_rotation) {
+  Eigen::Matrix<double, 32, 32> H =
+      imuFactorInformation(factor, pose_i, motion_i, pose_j, motion_j, tilt);
   H.block<9, 9>(6, 6) += prior_i.information.topLeftCorner<9, 9>();
   H.block<9, 2>(6, 30) += prior_i.information.topRightCorner<9, 2>();
   H.block<2, 9>(30, 6) += prior_i.information.bottomLeftCorner<2, 9>();
   H.block<2, 2>(30, 30) += prior_i.information.bottomRightCorner<2, 2>();
   // The quaternion tangent delta rotates by 2 |delta|: sigma_delta = sigma_rotation / 2.
   Eigen::Matrix<double, 6, 1> pose_information;
-  pose_information << Eigen::Vector3d::Constant(1.0 / (pose_sigma_translation * pose_sigma_translation)),
+  pose_information << Eigen::Vector3d::Constant(1.0 /
+                                                (pose_sigma_translation * pose_sigma_translation)),
       Eigen::Vector3d::Constant(4.0 / (pose_sigma_rotation * pose_sigma_rotation));
   H.block<6, 6>(0, 0) += pose_information.asDiagonal();
   H.block<6, 6>(15, 15) += pose_information.asDiagonal();

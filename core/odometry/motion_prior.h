@@ -9,8 +9,8 @@
 /// oldest state is not frozen. The tilt and the accelerometer bias are
 /// strongly correlated (one cannot be told from the other until the sensor
 /// turns), so they share one prior.
-#include <Eigen/Core>
 #include <ceres/sized_cost_function.h>
+#include <Eigen/Core>
 
 #include "imu/imu_factor.h"
 
@@ -22,7 +22,7 @@ using Vector11d = Eigen::Matrix<double, 11, 1>;
 using Matrix11d = Eigen::Matrix<double, 11, 11>;
 
 struct MotionPrior {
-  Vector11d mean = Vector11d::Zero();           ///< [v, bg, ba, tilt]
+  Vector11d mean = Vector11d::Zero();             ///< [v, bg, ba, tilt]
   Matrix11d information = Matrix11d::Identity();  ///< Lambda = covariance^-1
 };
 
@@ -44,6 +44,14 @@ MotionPrior diagonalMotionPrior(const Vector9d& motion, const Eigen::Vector2d& t
                                 double sigma_velocity, double sigma_gyro_bias,
                                 double sigma_accel_bias, double sigma_tilt);
 
+/// Information J^T J of the IMU factor i -> j (whitened) over the tangent
+/// z = [pose_i (6), motion_i (9), pose_j (6), motion_j (9), tilt (2)], the
+/// pose blocks' ambient Jacobians taken to the ImuPoseManifold's tangent.
+Eigen::Matrix<double, 32, 32> imuFactorInformation(const ImuGravityFactor& factor,
+                                                   const double* pose_i, const double* motion_i,
+                                                   const double* pose_j, const double* motion_j,
+                                                   const double* tilt);
+
 /// The prior on [motion_j, tilt] when state i leaves the window.
 /// Variables z = [pose_i (6, tangent), motion_i (9), pose_j (6), motion_j (9),
 /// tilt (2)] with information from: the prior on [motion_i, tilt]; the IMU
@@ -54,9 +62,8 @@ MotionPrior diagonalMotionPrior(const Vector9d& motion, const Eigen::Vector2d& t
 /// Everything but [motion_j, tilt] is marginalised out (Schur complement),
 /// linearised at the current estimates; the mean is their current estimate.
 MotionPrior propagateMotionPrior(const MotionPrior& prior_i, const ImuGravityFactor& factor,
-                                 const double* pose_i, const double* motion_i,
-                                 const double* pose_j, const double* motion_j,
-                                 const double* tilt, double pose_sigma_translation,
-                                 double pose_sigma_rotation);
+                                 const double* pose_i, const double* motion_i, const double* pose_j,
+                                 const double* motion_j, const double* tilt,
+                                 double pose_sigma_translation, double pose_sigma_rotation);
 
 }  // namespace storey

@@ -24,6 +24,7 @@
 #include "odometry/imu_gap_fill.h"
 #include "odometry/lidar_factors.h"
 #include "odometry/motion_prior.h"
+#include "odometry/state_prior.h"
 
 namespace storey {
 
@@ -38,6 +39,9 @@ struct LidarInertialOdometry::Frame {
   OdometryScanStats stats;
   bool in_map = false;       // features inserted into the local map
   MotionPrior motion_prior;  // used while this frame is the window's oldest
+  // With odometry.marginalise_pose, the prior on its whole state while it is
+  // the window's oldest (none for the log's first frame: its pose stays fixed).
+  std::unique_ptr<StatePrior> state_prior;
 
   ImuState state() const { return blocks.toState(state_ns); }
 };
@@ -432,9 +436,14 @@ void LidarInertialOdometry::optimise(Frame& newest) {
     for (auto& frame : window_) addImuStateBlocks(problem, frame->blocks);
     problem.AddParameterBlock(tilt_, 2);
     Frame& oldest = *window_.front();
-    problem.SetParameterBlockConstant(oldest.blocks.pose);
-    problem.AddResidualBlock(new MotionPriorFactor(oldest.motion_prior), nullptr,
-                             oldest.blocks.motion, tilt_);
+    if (oldest.state_prior) {
+      problem.AddResidualBlock(new StatePriorFactor(*oldest.state_prior), nullptr,
+                               oldest.blocks.pose, oldest.blocks.motion, tilt_);
+    } else {
+      problem.SetParameterBlockConstant(oldest.blocks.pose);
+      problem.AddResidualBlock(new MotionPriorFactor(oldest.motion_prior), nullptr,
+                               oldest.blocks.motion, tilt_);
+    }
     for (std::size_t i = 1; i < window_.size(); ++i) {
       Frame& previous = *window_[i - 1];
       Frame& frame = *window_[i];
@@ -445,7 +454,8 @@ void LidarInertialOdometry::optimise(Frame& newest) {
                                previous.blocks.pose, previous.blocks.motion, frame.blocks.pose,
                                frame.blocks.motion, tilt_);
     }
-    for (std::size_t i = 1; i < window_.size(); ++i) {
+    // The oldest frame's own scan only when its pose is free.
+    for (std::size_t i = oldest.state_prior ? 0 : 1; i < window_.size(); ++i) {
       Frame& frame = *window_[i];
       if (frame.matches.planes.empty() && frame.matches.lines.empty()) continue;
       problem.AddResidualBlock(
@@ -506,6 +516,16 @@ void LidarInertialOdometry::slide() {
       oldest.motion_prior, ImuGravityFactor(*next.from_previous), oldest.blocks.pose,
       oldest.blocks.motion, next.blocks.pose, next.blocks.motion, tilt_,
       config_.pose_sigma_translation, config_.pose_sigma_rotation);
+  if (config_.marginalise_pose) {
+    Eigen::Matrix<double, 6, 6> lidar_information;
+    Eigen::Matrix<double, 6, 1> gradient;
+    lidarNormalEquations(oldest.matches, oldest.state().T_world_imu, config_.huber_threshold,
+                         lidar_information, gradient);
+    next.state_prior = std::make_unique<StatePrior>(propagateStatePrior(
+        oldest.state_prior.get(), oldest.motion_prior, ImuGravityFactor(*next.from_previous),
+        oldest.blocks.pose, oldest.blocks.motion, next.blocks.pose, next.blocks.motion, tilt_,
+        lidar_information));
+  }
   emit(oldest);
   window_.pop_front();
 }

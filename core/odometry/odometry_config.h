@@ -40,6 +40,10 @@ struct OdometryConfig {
   double pose_sigma_translation = 0.02;      ///< accuracy of a registered pose, used when the
                                              ///< oldest state leaves the window [m]
   double pose_sigma_rotation = 0.005;        ///< same for its rotation [rad]
+  bool marginalise_pose = false;  ///< a state leaving the window passes a prior on the next
+                                  ///< one's pose, motion and tilt, with its own LiDAR
+                                  ///< information (the oldest pose is free); false: the
+                                  ///< oldest pose is held fixed and pose_sigma_* stand in
   double max_scan_gap =
       0.5;  ///< a longer time between scans is logged (the reader warns: faults) [s]
 

@@ -111,6 +111,18 @@ TEST(OdometryEndToEnd, AFeatureBudgetMatchesAtMostThatManyPlanesAndStaysOnTheTru
             0.5 * budget);
 }
 
+TEST(OdometryEndToEnd, BothMarginalisationsStayOnTheTruth) {
+  // odometry.marginalise_pose: the default runs in every other test; this one
+  // runs the other setting (the oldest pose held fixed, or free under the
+  // marginalised prior on the whole state).
+  const bool other = !OdometryConfig().marginalise_pose;
+  const RunErrors e = simulateAndRun(sim::loadBuildingSpec("tiny"), [&](Config& config) {
+    config.odometry.marginalise_pose = other;
+  });
+  expectAccurate(e);
+  EXPECT_LT(e.ate_rmse, 0.03) << "marginalise_pose " << other;
+}
+
 TEST(OdometryEndToEnd, ImuUpsideDownTurnedAt200Hz) {
   sim::BuildingSpec spec = sim::loadBuildingSpec("tiny");
   spec.sensors.imu.rate = 200.0;
