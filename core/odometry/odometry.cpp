@@ -512,10 +512,7 @@ void LidarInertialOdometry::slide() {
   }
   if (window_.size() == 1) return;  // the first frame stays as the window's fixed anchor
   Frame& next = *window_[1];
-  next.motion_prior = propagateMotionPrior(
-      oldest.motion_prior, ImuGravityFactor(*next.from_previous), oldest.blocks.pose,
-      oldest.blocks.motion, next.blocks.pose, next.blocks.motion, tilt_,
-      config_.pose_sigma_translation, config_.pose_sigma_rotation);
+  // One prior or the other: a frame with a state prior never uses its motion prior.
   if (config_.marginalise_pose) {
     Eigen::Matrix<double, 6, 6> lidar_information;
     Eigen::Matrix<double, 6, 1> gradient;
@@ -525,6 +522,11 @@ void LidarInertialOdometry::slide() {
         oldest.state_prior.get(), oldest.motion_prior, ImuGravityFactor(*next.from_previous),
         oldest.blocks.pose, oldest.blocks.motion, next.blocks.pose, next.blocks.motion, tilt_,
         lidar_information));
+  } else {
+    next.motion_prior = propagateMotionPrior(
+        oldest.motion_prior, ImuGravityFactor(*next.from_previous), oldest.blocks.pose,
+        oldest.blocks.motion, next.blocks.pose, next.blocks.motion, tilt_,
+        config_.pose_sigma_translation, config_.pose_sigma_rotation);
   }
   emit(oldest);
   window_.pop_front();
