@@ -14,6 +14,7 @@
 
 #include "backend/plane_hull.h"
 #include "backend/plane_math.h"
+#include "backend/unexplained_points.h"
 #include "types/voxel_hash.h"
 
 namespace storey::backend {
@@ -182,99 +183,6 @@ void dropExplained(std::vector<int>& indices, const std::vector<char>& explained
                                [&](int i) { return explained[static_cast<std::size_t>(i)] != 0; }),
                 indices.end());
 }
-
-/// The points no detected plane explains yet, in scan order, as arrays per
-/// coordinate (the inlier test of every plane runs over all of them).
-struct UnexplainedPoints {
-  std::vector<double> x, y, z;       ///< the points' coordinates, widened once
-  std::vector<std::uint32_t> index;  ///< into the scan's points
-
-  explicit UnexplainedPoints(const std::vector<Eigen::Vector3f>& points) {
-    x.reserve(points.size());
-    y.reserve(points.size());
-    z.reserve(points.size());
-    index.reserve(points.size());
-    for (std::size_t i = 0; i < points.size(); ++i) {
-      x.push_back(points[i].x());
-      y.push_back(points[i].y());
-      z.push_back(points[i].z());
-      index.push_back(static_cast<std::uint32_t>(i));
-    }
-  }
-
-  /// The points within `threshold` of the plane n.p = d (their positions j
-  /// here, in order) into `out`.
-  void within(const Eigen::Vector3d& n, double d, double threshold,
-              std::vector<std::uint32_t>& out) const {
-    out.resize(x.size());
-    std::uint32_t* __restrict o = out.data();
-    std::size_t kept = 0;
-    forEachBlock(n, d, threshold, [&](std::size_t base, std::size_t m, const double* inside) {
-      // Branch-free: every j is written, the count only grows for an inlier.
-      for (std::size_t j = 0; j < m; ++j) {
-        o[kept] = static_cast<std::uint32_t>(base + j);
-        kept += inside[j] != 0.0 ? 1 : 0;
-      }
-    });
-    out.resize(kept);
-  }
-
-  /// within() and then the removal of those points, in one pass: the points
-  /// within `threshold` of the plane leave the arrays (the others keep their
-  /// order); their coordinates go to `inliers` and their scan indices to
-  /// `inlier_index`, in order.
-  void extract(const Eigen::Vector3d& n, double d, double threshold,
-               std::vector<Eigen::Vector3d>& inliers, std::vector<std::uint32_t>& inlier_index) {
-    inliers.clear();
-    inlier_index.clear();
-    std::size_t kept = 0;
-    forEachBlock(n, d, threshold, [&](std::size_t base, std::size_t m, const double* inside) {
-      for (std::size_t j = base; j < base + m; ++j) {
-        if (inside[j - base] != 0.0) {
-          inliers.emplace_back(x[j], y[j], z[j]);
-          inlier_index.push_back(index[j]);
-        } else {
-          x[kept] = x[j];
-          y[kept] = y[j];
-          z[kept] = z[j];
-          index[kept] = index[j];
-          ++kept;
-        }
-      }
-    });
-    x.resize(kept);
-    y.resize(kept);
-    z.resize(kept);
-    index.resize(kept);
-  }
-
- private:
-  /// The inlier test over blocks of points: for each block, inside[j] = 1.0
-  /// when |distance| <= threshold, else 0.0, then visit(base, count, inside).
-  /// The signed distance in double precision is (n_x x + n_y y) + n_z z - d,
-  /// as Eigen's n.dot(p) - d; the test loop has no data-dependent branch or
-  /// store and writes doubles, so GCC vectorises it for the baseline x86-64
-  /// (two points per SSE2 instruction; with 64-bit integer flags it did not:
-  /// SSE2 has no vector type for that compare-and-convert, -fopt-info-vec).
-  template <typename Visit>
-  void forEachBlock(const Eigen::Vector3d& n, double d, double threshold, Visit&& visit) const {
-    constexpr std::size_t kBlock = 512;
-    alignas(16) double inside[kBlock];
-    const double nx = n.x(), ny = n.y(), nz = n.z();
-    const std::size_t count = x.size();
-    for (std::size_t base = 0; base < count; base += kBlock) {
-      const std::size_t m = std::min(kBlock, count - base);
-      const double* __restrict px = x.data() + base;
-      const double* __restrict py = y.data() + base;
-      const double* __restrict pz = z.data() + base;
-      for (std::size_t j = 0; j < m; ++j) {
-        const double distance = (nx * px[j] + ny * py[j]) + nz * pz[j] - d;
-        inside[j] = std::abs(distance) <= threshold ? 1 : 0;
-      }
-      visit(base, m, inside);
-    }
-  }
-};
 
 }  // namespace
 
