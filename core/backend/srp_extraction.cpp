@@ -197,13 +197,16 @@ void dropExplained(std::vector<int>& indices, const std::vector<char>& explained
 bool seenEdgeOn(const DetectedPlane& plane, const std::vector<Eigen::Vector3d>& inliers,
                 double min_angle_deg, double ransac_distance) {
   if (min_angle_deg <= 0.0 || inliers.empty()) return false;
-  if (plane.plane.distance() < 3.0 * ransac_distance) return true;
-  std::vector<double> ranges;
-  ranges.reserve(inliers.size());
-  for (const auto& p : inliers) ranges.push_back(p.norm());
-  auto middle = ranges.begin() + static_cast<std::ptrdiff_t>(ranges.size() / 2);
-  std::nth_element(ranges.begin(), middle, ranges.end());
-  return plane.plane.distance() < *middle * std::sin(min_angle_deg * M_PI / 180.0);
+  const double d = plane.plane.distance();
+  if (d < 3.0 * ransac_distance) return true;
+  // d < median(r) sin(a), with the median the element k = n / 2 of the
+  // ranges in ascending order. d < fl(r sin(a)) holds for every range above
+  // some value: it holds for the median when it holds for at least n - k
+  // ranges, so a count decides it (no sort).
+  const double sin_angle = std::sin(min_angle_deg * M_PI / 180.0);
+  std::size_t holds = 0;
+  for (const auto& p : inliers) holds += d < p.norm() * sin_angle ? 1 : 0;
+  return holds >= inliers.size() - inliers.size() / 2;
 }
 
 SrpExtractionResult extractSrps(const std::vector<Eigen::Vector3f>& all_points,

@@ -15,10 +15,10 @@ namespace storey::backend {
 
 /// A plane found in a scan, in the scan's (keyframe's LiDAR) frame.
 struct DetectedPlane {
-  Plane plane;                  ///< Hesse form, d >= 0: the sensor is on the side opposite n
-  int points = 0;               ///< scan points within ransac_distance of the plane
-  double rms = 0.0;             ///< RMS point-to-plane distance of those points [m]
-  double extent = 0.0;          ///< 4 std of the inliers along their second axis [m]
+  Plane plane;          ///< Hesse form, d >= 0: the sensor is on the side opposite n
+  int points = 0;       ///< scan points within ransac_distance of the plane
+  double rms = 0.0;     ///< RMS point-to-plane distance of those points [m]
+  double extent = 0.0;  ///< 4 std of the inliers along their second axis [m]
   Eigen::Vector3d centroid = Eigen::Vector3d::Zero();  ///< of the inliers [m]
   /// Outline: convex hull of the inliers on the plane (backend/plane_hull.h);
   /// filled for the SRPs [m].
@@ -29,7 +29,14 @@ struct DetectedPlane {
 };
 
 /// Why a detected plane did not become an SRP.
-enum class PlaneReject { kTooFewPoints, kTooSmall, kEdgeOn, kNotOrthogonal, kBeyondMaxSrps, kCount };
+enum class PlaneReject {
+  kTooFewPoints,
+  kTooSmall,
+  kEdgeOn,
+  kNotOrthogonal,
+  kBeyondMaxSrps,
+  kCount
+};
 const char* toString(PlaneReject reason);
 
 struct SrpExtractionResult {
@@ -48,6 +55,13 @@ SrpExtractionResult extractSrps(const std::vector<Eigen::Vector3f>& points,
 /// Fits a plane to points by least squares (PCA) and fills points, rms,
 /// extent, centroid and covariance (point noise max(rms, point_sigma), at most
 /// max_effective_points counted as independent). Needs >= 3 points.
-DetectedPlane fitPlane(const std::vector<Eigen::Vector3d>& inliers, const SrpExtractionConfig& config);
+DetectedPlane fitPlane(const std::vector<Eigen::Vector3d>& inliers,
+                       const SrpExtractionConfig& config);
+
+/// True when `plane` (with its `inliers`, sensor frame) is the sensor's own
+/// beam cone: within 3 ransac_distance of the sensor, or the median beam
+/// angle to it, asin(d / median range), below min_angle_deg (<= 0: never).
+bool seenEdgeOn(const DetectedPlane& plane, const std::vector<Eigen::Vector3d>& inliers,
+                double min_angle_deg, double ransac_distance);
 
 }  // namespace storey::backend

@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
 #include <random>
 
 #include "backend/plane_math.h"
@@ -178,6 +180,55 @@ TEST(SrpExtraction, TheSensorsOwnBeamConeIsNoPlane) {
   const SrpExtractionResult r = extractSrps(pts, SrpExtractionConfig{});
   EXPECT_FALSE(throughSensor(r));
   EXPECT_GE(r.rejects[static_cast<int>(PlaneReject::kEdgeOn)], 1);
+}
+
+}  // namespace
+}  // namespace storey::backend
+
+namespace storey::backend {
+namespace {
+
+// seenEdgeOn decides "d < median(range) sin(angle)" by counting; it must agree
+// with the median taken as the middle element (n / 2 of the sorted ranges),
+// for odd and even counts and with ranges exactly at the decision value.
+TEST(SeenEdgeOn, AgreesWithTheMedianOfTheRanges) {
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> range(10.0, 60.0);  // decision values > 3 x 0.05 m
+  std::uniform_real_distribution<double> direction(-1.0, 1.0);
+  const double angle_deg = 1.0;
+  const double sin_angle = std::sin(angle_deg * M_PI / 180.0);
+  int edge_on = 0, checked = 0;
+  for (int trial = 0; trial < 2000; ++trial) {
+    const std::size_t n = 1 + static_cast<std::size_t>(trial % 40);
+    std::vector<Eigen::Vector3d> inliers;
+    std::vector<double> ranges;
+    for (std::size_t i = 0; i < n; ++i) {
+      const Eigen::Vector3d u =
+          Eigen::Vector3d(direction(rng), direction(rng), direction(rng) + 2.0).normalized();
+      inliers.push_back(range(rng) * u);
+      ranges.push_back(inliers.back().norm());
+    }
+    std::vector<double> sorted = ranges;
+    std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(n / 2),
+                     sorted.end());
+    const double median = sorted[n / 2];
+    // Planes at distances around the decision value: below, at and above it,
+    // and at the value some other range gives.
+    const double other = ranges[static_cast<std::size_t>(trial) % n] * sin_angle;
+    for (double d : {median * sin_angle, std::nextafter(median * sin_angle, 0.0),
+                     std::nextafter(median * sin_angle, 1e9), other, 0.5 * median * sin_angle}) {
+      DetectedPlane plane;
+      plane.plane = Plane(Eigen::Vector3d::UnitZ(), d);
+      const bool expected = d < median * sin_angle;
+      EXPECT_EQ(seenEdgeOn(plane, inliers, angle_deg, 0.05), expected)
+          << "n " << n << " d " << d << " median " << median;
+      edge_on += expected ? 1 : 0;
+      ++checked;
+    }
+  }
+  // Both outcomes occur.
+  EXPECT_GT(edge_on, checked / 10);
+  EXPECT_LT(edge_on, checked - checked / 10);
 }
 
 }  // namespace
