@@ -9,8 +9,9 @@
 # The log is simulated once into DIR/sim from SPEC (default `default`, cut to
 # --duration seconds, default 120) unless --log is given. The two builds map
 # it alternately (BEFORE, AFTER, BEFORE, ...) N times each (default 3), with
-# --no-render; each run's wall and CPU time (/usr/bin/time), its peak RSS and
-# the odometry's median per scan (report.json) are kept in DIR/runs.csv. Prints
+# --no-render; each run's wall and CPU time (/usr/bin/time), its peak RSS,
+# the odometry's median per scan and the back end's median CPU time per
+# keyframe (report.json) are kept in DIR/runs.csv. Prints
 # the medians per build and the ratios AFTER / BEFORE, and whether the two
 # builds wrote the same trajectory.tum. Run it on an otherwise idle machine.
 set -euo pipefail
@@ -69,7 +70,7 @@ fi
 run_args=(--no-render)
 if [[ -n "$calibration" ]]; then run_args+=(--calibration "$calibration"); fi
 
-echo "build,run,wall_s,cpu_s,peak_mib,odometry_ms_per_scan" >"$out/runs.csv"
+echo "build,run,wall_s,cpu_s,peak_mib,odometry_ms_per_scan,backend_cpu_ms_per_keyframe" >"$out/runs.csv"
 for ((k = 1; k <= runs; ++k)); do
   for which in before after; do
     bin="$before"
@@ -79,21 +80,27 @@ for ((k = 1; k <= runs; ++k)); do
     /usr/bin/time -f "%e %U %S %M" -o "$out/time.txt" "$bin" run "$log" "${run_args[@]}" -o "$dir" \
       >"$out/run-$which.log" 2>&1
     read -r wall user sys rss_kb <"$out/time.txt"
-    odometry=$(python3 -c "import json,sys; print(json.load(open(sys.argv[1]))['odometry']['timing_ms']['total_per_scan']['median'])" "$dir/report.json")
-    echo "$which,$k,$wall,$(python3 -c "print($user + $sys)"),$((rss_kb / 1024)),$odometry" >>"$out/runs.csv"
-    echo "speed_compare: $which run $k: wall $wall s, odometry $odometry ms per scan"
+    read -r odometry backend < <(python3 - "$dir/report.json" <<'PY'
+import json, sys
+r = json.load(open(sys.argv[1]))
+backend = (r.get("backend") or {}).get("timing_ms_per_keyframe", {}).get("total_cpu", {})
+print(r["odometry"]["timing_ms"]["total_per_scan"]["median"], backend.get("median", "nan"))
+PY
+)
+    echo "$which,$k,$wall,$(python3 -c "print($user + $sys)"),$((rss_kb / 1024)),$odometry,$backend" >>"$out/runs.csv"
+    echo "speed_compare: $which run $k: wall $wall s, odometry $odometry ms per scan, back end $backend ms per keyframe (CPU)"
   done
 done
 
 python3 - "$out/runs.csv" <<'PY'
 import csv, statistics, sys
 rows = list(csv.DictReader(open(sys.argv[1])))
-cols = ["wall_s", "cpu_s", "peak_mib", "odometry_ms_per_scan"]
+cols = ["wall_s", "cpu_s", "peak_mib", "odometry_ms_per_scan", "backend_cpu_ms_per_keyframe"]
 med = {b: {c: statistics.median(float(r[c]) for r in rows if r["build"] == b) for c in cols}
        for b in ("before", "after")}
-print(f"{'median of ' + str(len(rows) // 2) + ' runs':24} {'before':>10} {'after':>10} {'after/before':>13}")
+print(f"{'median of ' + str(len(rows) // 2) + ' runs':28} {'before':>10} {'after':>10} {'after/before':>13}")
 for c in cols:
-    print(f"{c:24} {med['before'][c]:10.3f} {med['after'][c]:10.3f} {med['after'][c] / med['before'][c]:13.3f}")
+    print(f"{c:28} {med['before'][c]:10.3f} {med['after'][c]:10.3f} {med['after'][c] / med['before'][c]:13.3f}")
 PY
 if cmp -s "$out/run-before/trajectory.tum" "$out/run-after/trajectory.tum"; then
   echo "trajectory.tum: the same bytes from both builds"

@@ -30,6 +30,7 @@ void BackendConfig::validate() const {
   require(e.voxel_size > 0, "extraction.voxel_size", "must be positive");
   require(e.ransac_max_points >= 10, "extraction.ransac_max_points", "must be >= 10");
   require(e.max_range > e.min_range, "extraction.max_range", "must exceed extraction.min_range");
+  require(e.max_points >= 0, "extraction.max_points", "must be >= 0 (0: every point)");
   require(e.min_view_angle_deg >= 0 && e.min_view_angle_deg < 45, "extraction.min_view_angle_deg",
           "must be within [0, 45)");
   require(e.point_sigma > 0, "extraction.point_sigma", "must be positive");

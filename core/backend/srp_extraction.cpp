@@ -38,7 +38,7 @@ const char* toString(PlaneReject reason) {
 }
 
 DetectedPlane fitPlane(const std::vector<Eigen::Vector3d>& inliers,
-                       const SrpExtractionConfig& config) {
+                       const SrpExtractionConfig& config, int scan_points_per_inlier) {
   // One pass: sum of p and of p p^T (about the first point, for precision).
   DetectedPlane out;
   const double count = static_cast<double>(inliers.size());
@@ -73,7 +73,7 @@ DetectedPlane fitPlane(const std::vector<Eigen::Vector3d>& inliers,
     d = -d;
   }
   out.plane = Plane(n, d);
-  out.points = static_cast<int>(inliers.size());
+  out.points = static_cast<int>(inliers.size()) * std::max(scan_points_per_inlier, 1);
   out.rms = std::sqrt(std::max(0.0, eig.eigenvalues()(0)));
   out.extent = 4.0 * std::sqrt(std::max(0.0, eig.eigenvalues()(1)));
   out.centroid = c;
@@ -90,8 +90,8 @@ DetectedPlane fitPlane(const std::vector<Eigen::Vector3d>& inliers,
   info.bottomLeftCorner<1, 2>() = info.topRightCorner<2, 1>().transpose();
   info(2, 2) = count;
   const double sigma = std::max(out.rms, config.point_sigma);
-  const double effective =
-      std::min(count, static_cast<double>(std::max(config.max_effective_points, 3)));
+  const double effective = std::min(static_cast<double>(out.points),
+                                    static_cast<double>(std::max(config.max_effective_points, 3)));
   info *= effective / count / (sigma * sigma);
   out.covariance = info.inverse();
   return out;
@@ -220,8 +220,27 @@ SrpExtractionResult extractSrps(const std::vector<Eigen::Vector3f>& all_points,
     const double r2 = p.cast<double>().squaredNorm();
     if (std::isfinite(r2) && r2 >= min_r2 && r2 <= max_r2) points.push_back(p);
   }
+  // A dense sensor's scan: one point of every k (scan order), so the cost
+  // does not grow with the point count; a plane's fit counts at most
+  // max_effective_points anyway. Each point kept stands for k scan points
+  // (a plane's count, min_points and its uncertainty). The point kept of
+  // each run of k is at a pseudo-random offset (a hash of the run's index):
+  // a fixed one would keep the same few lasers of a multi-beam scan when k
+  // divides their number.
   result.points = static_cast<int>(points.size());
-  if (points.size() < static_cast<std::size_t>(std::max(config.min_points, 3))) return result;
+  std::size_t stride = 1;
+  const auto max_points = static_cast<std::size_t>(std::max(config.max_points, 0));
+  if (max_points > 0 && points.size() > max_points) {
+    stride = (points.size() + max_points - 1) / max_points;
+    std::size_t kept = 0;
+    for (std::size_t start = 0; start < points.size(); start += stride) {
+      const std::size_t run = std::min(stride, points.size() - start);
+      points[kept++] = points[start + voxelHash(start / stride) % run];
+    }
+    points.resize(kept);
+  }
+  if (points.size() * stride < static_cast<std::size_t>(std::max(config.min_points, 3)))
+    return result;
 
   // Voxel subsample for the RANSAC hypotheses (first point of each voxel).
   // The unexplained points of the subsample and of the whole scan, in scan
@@ -277,7 +296,7 @@ SrpExtractionResult extractSrps(const std::vector<Eigen::Vector3f>& all_points,
         unexplained.extract(n, d, config.ransac_distance, inliers, inlier_index);
       }
       if (inliers.size() < 3) break;
-      plane = fitPlane(inliers, config);
+      plane = fitPlane(inliers, config, static_cast<int>(stride));
       n = plane.plane.normal();
       d = plane.plane.distance();
     }

@@ -54,9 +54,12 @@ SrpExtractionResult extractSrps(const std::vector<Eigen::Vector3f>& points,
 
 /// Fits a plane to points by least squares (PCA) and fills points, rms,
 /// extent, centroid and covariance (point noise max(rms, point_sigma), at most
-/// max_effective_points counted as independent). Needs >= 3 points.
+/// max_effective_points counted as independent). Needs >= 3 points. Each
+/// inlier stands for `scan_points_per_inlier` scan points (a thinned scan,
+/// extraction.max_points): `points` counts those, and so does the
+/// uncertainty.
 DetectedPlane fitPlane(const std::vector<Eigen::Vector3d>& inliers,
-                       const SrpExtractionConfig& config);
+                       const SrpExtractionConfig& config, int scan_points_per_inlier = 1);
 
 /// True when `plane` (with its `inliers`, sensor frame) is the sensor's own
 /// beam cone: within 3 ransac_distance of the sensor, or the median beam

@@ -121,6 +121,7 @@ void visitBackend(V& v, BackendConfig& c) {
     e.field("ransac_max_points", x.ransac_max_points);
     e.field("min_range", x.min_range);
     e.field("max_range", x.max_range);
+    e.field("max_points", x.max_points);
     e.field("min_extent", x.min_extent);
     e.field("min_view_angle_deg", x.min_view_angle_deg);
     e.field("point_sigma", x.point_sigma);

@@ -126,6 +126,89 @@ TEST(SrpExtraction, IsDeterministic) {
   }
 }
 
+// extraction.max_points: a dense scan is thinned to every k-th point; the
+// planes come out the same to a fraction of the fit noise, each kept point
+// standing for k scan points (the count, min_points and the uncertainty).
+TEST(SrpExtraction, ADenseScanIsThinnedToTheSamePlanes) {
+  std::mt19937 rng(1);
+  const auto pts = roomScan(rng, true);
+  SrpExtractionConfig all;
+  all.max_points = 0;
+  const SrpExtractionResult a = extractSrps(pts, all);  // a.points: those within range
+  SrpExtractionConfig thinned;
+  thinned.max_points = a.points / 3 + 1;  // every third point
+  const SrpExtractionResult b = extractSrps(pts, thinned);
+  EXPECT_EQ(b.points, a.points);
+  ASSERT_EQ(a.srps.size(), 3u);
+  ASSERT_EQ(b.srps.size(), a.srps.size());
+  for (std::size_t i = 0; i < a.srps.size(); ++i) {
+    EXPECT_GT(a.srps[i].plane.normal().dot(b.srps[i].plane.normal()), std::cos(0.1 * M_PI / 180.0));
+    EXPECT_NEAR(a.srps[i].plane.distance(), b.srps[i].plane.distance(), 0.002);
+    EXPECT_EQ(b.srps[i].points % 3, 0);
+    EXPECT_NEAR(b.srps[i].points, a.srps[i].points, 0.1 * a.srps[i].points);
+    // The same information (both beyond max_effective_points): the same
+    // covariance up to the fits' own differences.
+    EXPECT_NEAR(std::sqrt(b.srps[i].covariance(2, 2)), std::sqrt(a.srps[i].covariance(2, 2)),
+                0.2 * std::sqrt(a.srps[i].covariance(2, 2)));
+  }
+}
+
+TEST(SrpExtraction, AThinnedPlaneCountsTheScanPointsItStandsFor) {
+  std::mt19937 rng(5);
+  std::vector<Eigen::Vector3f> pts;
+  addPatch(pts, {{-3, -2, -0.6}, {7, 0, 0}, {0, 4.5, 0}, 0.25}, rng, 0.01);  // ~560 floor points
+  SrpExtractionConfig config;
+  ASSERT_GT(pts.size(), static_cast<std::size_t>(config.min_points));  // fixture
+  ASSERT_LT(pts.size(), 700u);
+  config.max_points = 200;  // every third point: ~190 kept, fewer than min_points
+  const SrpExtractionResult r = extractSrps(pts, config);
+  ASSERT_EQ(r.srps.size(), 1u);
+  EXPECT_NEAR(r.srps[0].points, static_cast<double>(pts.size()), 3.0);
+  EXPECT_TRUE(near(r.srps[0], {0, 0, -1}, 0.6, 0.5, 0.01));
+  // Thinned to fewer points than max_effective_points (every twelfth: ~47),
+  // the plane keeps the information of the scan points it stands for.
+  SrpExtractionConfig all = config, sparse = config;
+  all.max_points = 0;
+  sparse.max_points = 50;
+  const SrpExtractionResult r_all = extractSrps(pts, all);
+  const SrpExtractionResult r_sparse = extractSrps(pts, sparse);
+  ASSERT_EQ(r_all.srps.size(), 1u);
+  ASSERT_EQ(r_sparse.srps.size(), 1u);
+  EXPECT_NEAR(r_sparse.srps[0].covariance(2, 2), r_all.srps[0].covariance(2, 2),
+              0.35 * r_all.srps[0].covariance(2, 2));
+}
+
+// A multi-beam scan lists each column's lasers in turn: thinning to one
+// point in k must not keep the same lasers of every column (with a fixed
+// offset and k = 4, lasers 1, 5, ..., 29, which alone see the wall here,
+// would all be dropped).
+TEST(SrpExtraction, ThinningDoesNotKeepTheSameLasersOfEveryColumn) {
+  std::mt19937 rng(9);
+  std::normal_distribution<double> noise(0.0, 0.005);
+  std::vector<Eigen::Vector3f> pts;
+  const int columns = 400, lasers = 32;
+  for (int c = 0; c < columns; ++c) {
+    const double along = -4.0 + 8.0 * c / columns;
+    for (int l = 0; l < lasers; ++l) {
+      if (l % 4 == 1) {  // the wall x = 5
+        pts.emplace_back(static_cast<float>(5.0 + noise(rng)), static_cast<float>(along),
+                         static_cast<float>(-1.0 + 3.0 * l / lasers));
+      } else {  // the floor z = -1
+        pts.emplace_back(static_cast<float>(along), static_cast<float>(-3.0 + 6.0 * l / lasers),
+                         static_cast<float>(-1.0 + noise(rng)));
+      }
+    }
+  }
+  SrpExtractionConfig config;
+  config.max_points = columns * lasers / 4;  // one point in four
+  const SrpExtractionResult r = extractSrps(pts, config);
+  const DetectedPlane* wall = nullptr;
+  for (const DetectedPlane& p : r.srps)
+    if (near(p, {1, 0, 0}, 5.0, 1.0, 0.02)) wall = &p;
+  ASSERT_NE(wall, nullptr) << r.srps.size() << " SRPs, none the wall";
+  EXPECT_NEAR(wall->points, columns * lasers / 4, 0.15 * columns * lasers / 4);
+}
+
 TEST(FitPlane, RecoversAKnownPlaneAndItsUncertaintyShrinksWithExtent) {
   std::mt19937 rng(9);
   std::normal_distribution<double> g(0.0, 0.02);
