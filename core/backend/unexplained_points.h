@@ -102,12 +102,13 @@ struct UnexplainedPoints {
   /// The test is the signed distance in double precision,
   /// (n_x x + n_y y) + n_z z - d as Eigen's n.dot(p) - d. It runs first in
   /// float (four points per SSE2 instruction, no data-dependent branch or
-  /// store): the float distance is within `margin` of the double one
-  /// (rounding of n, d and five operations, each within 2^-24 of its
-  /// operands' magnitude, so < 8 * 2^-24 (|x| + |y| + |z| + |d|), and of the threshold), which
-  /// decides every point farther than that from the threshold; the few
-  /// within it are decided again in double. So the inliers are the double
-  /// test's, exactly.
+  /// store). The float distance differs from the double one by less than
+  /// 8 * 2^-24 (|x| + |y| + |z| + |d|) (the rounding of n, d and five
+  /// operations, each within 2^-24 of its operands' magnitude); `margin`,
+  /// 1e-6 (3 max|coordinate| + |d| + threshold), bounds that and the
+  /// rounding of the threshold itself. The float test decides every point
+  /// farther than `margin` from the threshold; the few nearer are decided
+  /// again in double. So the inliers are the double test's, exactly.
   template <typename Visit>
   void forEachBlock(const Eigen::Vector3d& n, double d, double threshold, Visit&& visit) const {
     constexpr std::size_t kBlock = 512;
