@@ -144,6 +144,50 @@ class HeldPlaneObservationFactor : public ceres::SizedCostFunction<3, 3, 1> {
   Eigen::Vector3d J_d_, offset_;
 };
 
+/// The residual r = L^T [e_t ; 2 vec(conj(q_ab) conj(q_a) q_b)] of both
+/// relative-pose costs and its Jacobians in (q_a, t_a, q_b, t_b), given the
+/// translation rows e_t, their Jacobian in q_a and in t_b (that in t_a is
+/// its negative). The rotation rows: with C = diag(-1, -1, -1, 1),
+///   de_r/dq_a = 2 (QL(conj q_ab) QR(q_b) C)_vec,  de_r/dq_b = 2 (QL(conj q_ab) QL(conj q_a))_vec.
+inline void relativePoseEvaluation(const Eigen::Matrix<double, 6, 6>& sqrt_information,
+                                   const Eigen::Quaterniond& q_ab, const Eigen::Quaterniond& q_a,
+                                   const Eigen::Quaterniond& q_b, const Eigen::Vector3d& e_t,
+                                   const Eigen::Matrix<double, 3, 4>& de_t_dqa,
+                                   const Eigen::Matrix3d& de_t_dtb, double* residual,
+                                   double** jacobians) {
+  const Eigen::Quaterniond q_a_inv = q_a.conjugate();
+  const Eigen::Quaterniond q_ab_inv = q_ab.conjugate();
+  const Eigen::Quaterniond dq = q_ab_inv * (q_a_inv * q_b);
+  Eigen::Matrix<double, 6, 1> e;
+  e.head<3>() = e_t;
+  e.tail<3>() = 2.0 * dq.vec();
+  Eigen::Map<Eigen::Matrix<double, 6, 1>> r(residual);
+  r = sqrt_information * e;
+  if (!jacobians) return;
+  const Eigen::Matrix<double, 6, 3> S_translation = sqrt_information.leftCols<3>();
+  const Eigen::Matrix<double, 6, 3> S_rotation = sqrt_information.rightCols<3>();
+  const Eigen::Matrix4d L_ab = quaternionLeft(q_ab_inv);
+  if (jacobians[0]) {
+    Eigen::Matrix4d ddq_dqa = L_ab * quaternionRight(q_b);
+    ddq_dqa.leftCols<3>() *= -1.0;  // d conj(q_a) / d q_a
+    Eigen::Map<Eigen::Matrix<double, 6, 4, Eigen::RowMajor>> J(jacobians[0]);
+    J = S_translation * de_t_dqa + S_rotation * (2.0 * ddq_dqa.topRows<3>());
+  }
+  if (jacobians[1]) {
+    Eigen::Map<Eigen::Matrix<double, 6, 3, Eigen::RowMajor>> J(jacobians[1]);
+    J = -S_translation * de_t_dtb;
+  }
+  if (jacobians[2]) {
+    const Eigen::Matrix4d ddq_dqb = L_ab * quaternionLeft(q_a_inv);
+    Eigen::Map<Eigen::Matrix<double, 6, 4, Eigen::RowMajor>> J(jacobians[2]);
+    J = S_rotation * (2.0 * ddq_dqb.topRows<3>());
+  }
+  if (jacobians[3]) {
+    Eigen::Map<Eigen::Matrix<double, 6, 3, Eigen::RowMajor>> J(jacobians[3]);
+    J = S_translation * de_t_dtb;
+  }
+}
+
 /// RelativePoseFactor with analytic Jacobians. Parameters: q_a (4), t_a (3),
 /// q_b (4), t_b (3). With f = conj(q_a) (t_b - t_a), dq = conj(q_ab) conj(q_a)
 /// q_b, e = [f - t_ab ; 2 vec(dq)] and r = L^T e:
@@ -158,46 +202,52 @@ class RelativePoseCost : public ceres::SizedCostFunction<6, 4, 3, 4, 3> {
                 double** jacobians) const override {
     const Eigen::Map<const Eigen::Quaterniond> q_a(parameters[0]), q_b(parameters[2]);
     const Eigen::Map<const Eigen::Vector3d> t_a(parameters[1]), t_b(parameters[3]);
-    const Eigen::Quaterniond q_a_inv = q_a.conjugate();
     const Eigen::Vector3d v = t_b - t_a;
-    const Eigen::Quaterniond q_ab_inv = f_.q_ab.conjugate();
-    const Eigen::Quaterniond dq = q_ab_inv * (q_a_inv * q_b);
-    Eigen::Matrix<double, 6, 1> e;
-    e.head<3>() = q_a_inv * v - f_.t_ab;
-    e.tail<3>() = 2.0 * dq.vec();
-    Eigen::Map<Eigen::Matrix<double, 6, 1>> r(residual);
-    r = f_.sqrt_information * e;
-    if (!jacobians) return true;
-    const Eigen::Matrix<double, 6, 3> S_translation = f_.sqrt_information.leftCols<3>();
-    const Eigen::Matrix<double, 6, 3> S_rotation = f_.sqrt_information.rightCols<3>();
     Eigen::Matrix<double, 3, 4> df_dqa;
     Eigen::Matrix3d M;
     conjugateRotationJacobians(q_a, v, df_dqa, M);
-    const Eigen::Matrix4d L_ab = quaternionLeft(q_ab_inv);
-    if (jacobians[0]) {
-      Eigen::Matrix4d ddq_dqa = L_ab * quaternionRight(q_b);
-      ddq_dqa.leftCols<3>() *= -1.0;  // d conj(q_a) / d q_a
-      Eigen::Map<Eigen::Matrix<double, 6, 4, Eigen::RowMajor>> J(jacobians[0]);
-      J = S_translation * df_dqa + S_rotation * (2.0 * ddq_dqa.topRows<3>());
-    }
-    if (jacobians[1]) {
-      Eigen::Map<Eigen::Matrix<double, 6, 3, Eigen::RowMajor>> J(jacobians[1]);
-      J = -S_translation * M;
-    }
-    if (jacobians[2]) {
-      const Eigen::Matrix4d ddq_dqb = L_ab * quaternionLeft(q_a_inv);
-      Eigen::Map<Eigen::Matrix<double, 6, 4, Eigen::RowMajor>> J(jacobians[2]);
-      J = S_rotation * (2.0 * ddq_dqb.topRows<3>());
-    }
-    if (jacobians[3]) {
-      Eigen::Map<Eigen::Matrix<double, 6, 3, Eigen::RowMajor>> J(jacobians[3]);
-      J = S_translation * M;
-    }
+    relativePoseEvaluation(f_.sqrt_information, f_.q_ab, q_a, q_b, q_a.conjugate() * v - f_.t_ab,
+                           df_dqa, M, residual, jacobians);
     return true;
   }
 
  private:
   RelativePoseFactor f_;
+};
+
+/// HeadingRelativePoseFactor with analytic Jacobians. Parameters as
+/// RelativePoseCost. With p = conj(q_world_odom q_odom_a), C = q_a p =
+/// QR(p) q_a, psi = 2 atan2(C_z, C_w), u = Rz(psi)^T (t_b - t_a):
+///   du/dpsi = (u_y, -u_x, 0),  dpsi/dC = 2 / (C_z^2 + C_w^2) (0, 0, C_w, -C_z),
+///   de/dq_a = [du/dpsi dpsi/dC QR(p) ; the rotation rows of RelativePoseCost],
+///   de/dt_a = [-Rz(psi)^T ; 0],  de/dt_b = [Rz(psi)^T ; 0],  de/dq_b as RelativePoseCost.
+class HeadingRelativePoseCost : public ceres::SizedCostFunction<6, 4, 3, 4, 3> {
+ public:
+  explicit HeadingRelativePoseCost(const HeadingRelativePoseFactor& factor) : f_(factor) {}
+
+  bool Evaluate(double const* const* parameters, double* residual,
+                double** jacobians) const override {
+    const Eigen::Map<const Eigen::Quaterniond> q_a(parameters[0]), q_b(parameters[2]);
+    const Eigen::Map<const Eigen::Vector3d> t_a(parameters[1]), t_b(parameters[3]);
+    const Eigen::Quaterniond p = f_.referenceInverse();
+    const Eigen::Quaterniond C = q_a * p;
+    const double n2 = C.z() * C.z() + C.w() * C.w();
+    const double c = (C.w() * C.w() - C.z() * C.z()) / n2;
+    const double s = 2.0 * C.w() * C.z() / n2;
+    const Eigen::Vector3d v = t_b - t_a;
+    const Eigen::Vector3d u(c * v.x() + s * v.y(), -s * v.x() + c * v.y(), v.z());
+    Eigen::Matrix3d Rt;  // Rz(psi)^T
+    Rt << c, s, 0.0, -s, c, 0.0, 0.0, 0.0, 1.0;
+    const Eigen::RowVector4d dpsi_dC = (2.0 / n2) * Eigen::RowVector4d(0.0, 0.0, C.w(), -C.z());
+    const Eigen::Matrix<double, 3, 4> du_dqa =
+        Eigen::Vector3d(u.y(), -u.x(), 0.0) * (dpsi_dC * quaternionRight(p));
+    relativePoseEvaluation(f_.sqrt_information, f_.q_ab, q_a, q_b, u - f_.levelledDisplacement(),
+                           du_dqa, Rt, residual, jacobians);
+    return true;
+  }
+
+ private:
+  HeadingRelativePoseFactor f_;
 };
 
 }  // namespace storey::backend

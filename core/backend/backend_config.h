@@ -90,9 +90,15 @@ struct GraphConfig {
                                      ///< [rad]; its position and yaw are held (gauge); 0 = all held
   double tilt_prior_sigma = 0.0;     ///< every keyframe's roll/pitch held to the odometry's
                                      ///< gravity-levelled attitude with this std [rad]; 0 = off
-  int max_iterations = 6;            ///< Levenberg-Marquardt iterations per keyframe [>= 1]
-  int window_keyframes = 20;         ///< newest keyframes optimised at each keyframe (older ones
-                                     ///< held fixed); 0 = always the whole graph [>= 0]
+  /// The odometry edges' translation in each keyframe's heading frame
+  /// (turned by its yaw only; the odometry's displacement levelled) instead
+  /// of its body frame, so a keyframe the graph tilts does not turn the
+  /// odometry's horizontal displacements into height (needs the odometry's
+  /// attitudes: setTiltReference)
+  bool heading_frame_edges = false;
+  int max_iterations = 6;     ///< Levenberg-Marquardt iterations per keyframe [>= 1]
+  int window_keyframes = 20;  ///< newest keyframes optimised at each keyframe (older ones
+                              ///< held fixed); 0 = always the whole graph [>= 0]
   /// Per plane free in a windowed solve, its observations by keyframes older
   /// than the window (held fixed) kept in the solve: the newest n [>= 0; 0 = all].
   int window_held_observations = 100;

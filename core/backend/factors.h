@@ -22,7 +22,8 @@ namespace storey::backend {
 ///   r = L^T [ B^T n_kf ; d_kf - d_obs ],
 /// with L L^T the information of the fit in the same coordinates (a1, a2, d).
 struct PlaneObservationFactor {
-  PlaneObservationFactor(const Eigen::Vector3d& n_obs, double d_obs, const Eigen::Matrix3d& sqrt_information)
+  PlaneObservationFactor(const Eigen::Vector3d& n_obs, double d_obs,
+                         const Eigen::Matrix3d& sqrt_information)
       : B_t(tangentBasis(n_obs).transpose()), d_obs(d_obs), sqrt_information(sqrt_information) {}
 
   template <typename T>
@@ -73,13 +74,69 @@ struct RelativePoseFactor {
     return true;
   }
 
-  static ceres::CostFunction* create(const Pose& T_a_b, const Eigen::Matrix<double, 6, 6>& sqrt_information) {
+  static ceres::CostFunction* create(const Pose& T_a_b,
+                                     const Eigen::Matrix<double, 6, 6>& sqrt_information) {
     return new ceres::AutoDiffCostFunction<RelativePoseFactor, 6, 4, 3, 4, 3>(
         new RelativePoseFactor(T_a_b, sqrt_information));
   }
 
   Eigen::Quaterniond q_ab;
   Eigen::Vector3d t_ab;
+  Eigen::Matrix<double, 6, 6> sqrt_information;
+};
+
+/// RelativePoseFactor with the translation in the heading frame of a
+/// (graph.heading_frame_edges; docs/method/backend.md, "Relative-pose
+/// factor"): the odometry's displacement, levelled, compared with the
+/// graph's after turning it by a's yaw correction only,
+///   C = q_a conj(q_world_odom q_odom_a),  psi = 2 atan2(C_z, C_w),
+///   e = [ Rz(psi)^T (t_b - t_a) - q_world_odom q_odom_a t_ab ;  2 vec(q_ab^-1 q_a^-1 q_b) ],
+///   r = L^T e.
+/// A tilt of keyframe a (the graph levelling it differently from the
+/// odometry) leaves the translation residual unchanged: the odometry's
+/// height differences stay height differences. `q_world_odom` points to the
+/// graph's current levelling of the odometry's map frame, read at every
+/// evaluation; `q_odom_a` is a's attitude in that frame.
+struct HeadingRelativePoseFactor {
+  HeadingRelativePoseFactor(const Pose& T_a_b, const Eigen::Quaterniond& q_odom_a,
+                            const Eigen::Quaterniond* q_world_odom,
+                            const Eigen::Matrix<double, 6, 6>& sqrt_information)
+      : q_ab(T_a_b.rotation()),
+        t_ab(T_a_b.translation()),
+        q_odom_a(q_odom_a),
+        q_world_odom(q_world_odom),
+        sqrt_information(sqrt_information) {}
+
+  /// The odometry's displacement from a to b in the levelled world frame.
+  Eigen::Vector3d levelledDisplacement() const { return *q_world_odom * (q_odom_a * t_ab); }
+  /// conj(q_world_odom q_odom_a): C = q_a * this.
+  Eigen::Quaterniond referenceInverse() const { return (*q_world_odom * q_odom_a).conjugate(); }
+
+  template <typename T>
+  bool operator()(const T* qa, const T* ta, const T* qb, const T* tb, T* residual) const {
+    const Eigen::Map<const Eigen::Quaternion<T>> q_a(qa), q_b(qb);
+    const Eigen::Map<const Eigen::Matrix<T, 3, 1>> t_a(ta), t_b(tb);
+    const Eigen::Vector3d delta = levelledDisplacement();
+    const Eigen::Quaternion<T> C = q_a * referenceInverse().cast<T>();
+    const T n2 = C.z() * C.z() + C.w() * C.w();
+    const T c = (C.w() * C.w() - C.z() * C.z()) / n2;  // cos psi
+    const T s = T(2.0) * C.w() * C.z() / n2;           // sin psi
+    const Eigen::Matrix<T, 3, 1> v = t_b - t_a;
+    Eigen::Matrix<T, 6, 1> e;
+    e(0) = c * v(0) + s * v(1) - T(delta(0));
+    e(1) = -s * v(0) + c * v(1) - T(delta(1));
+    e(2) = v(2) - T(delta(2));
+    const Eigen::Quaternion<T> dq = q_ab.conjugate().cast<T>() * (q_a.conjugate() * q_b);
+    e.template tail<3>() = T(2.0) * dq.vec();
+    Eigen::Map<Eigen::Matrix<T, 6, 1>> r(residual);
+    r = sqrt_information.cast<T>() * e;
+    return true;
+  }
+
+  Eigen::Quaterniond q_ab;
+  Eigen::Vector3d t_ab;
+  Eigen::Quaterniond q_odom_a;
+  const Eigen::Quaterniond* q_world_odom;
   Eigen::Matrix<double, 6, 6> sqrt_information;
 };
 
@@ -101,7 +158,8 @@ struct RotationPriorFactor {
     return true;
   }
 
-  static ceres::CostFunction* create(const Eigen::Quaterniond& q0, const Eigen::Matrix3d& sqrt_information) {
+  static ceres::CostFunction* create(const Eigen::Quaterniond& q0,
+                                     const Eigen::Matrix3d& sqrt_information) {
     return new ceres::AutoDiffCostFunction<RotationPriorFactor, 3, 4>(
         new RotationPriorFactor(q0, sqrt_information));
   }
@@ -129,7 +187,8 @@ struct LevelPriorFactor {
   }
 
   static ceres::CostFunction* create(bool level, double sigma) {
-    return new ceres::AutoDiffCostFunction<LevelPriorFactor, 2, 3>(new LevelPriorFactor(level, sigma));
+    return new ceres::AutoDiffCostFunction<LevelPriorFactor, 2, 3>(
+        new LevelPriorFactor(level, sigma));
   }
 
   bool level;

@@ -139,9 +139,16 @@ void PlaneGraph::addRelativePose(int a, int b, const Pose& T_a_b,
                                  const Eigen::Matrix<double, 6, 6>& information) {
   if (a < 0 || b <= a || b >= keyframes()) throw Error("PlaneGraph: bad relative pose keyframes");
   const int index = static_cast<int>(impl_->edges.size());
-  impl_->edges.push_back({a, b,
-                          std::make_unique<RelativePoseCost>(
-                              RelativePoseFactor(T_a_b, sqrtInformation<6>(information)))});
+  const Impl::Keyframe& k_a = impl_->kfs[static_cast<std::size_t>(a)];
+  std::unique_ptr<ceres::CostFunction> cost;
+  if (impl_->config.heading_frame_edges && k_a.has_tilt_reference) {
+    cost = std::make_unique<HeadingRelativePoseCost>(HeadingRelativePoseFactor(
+        T_a_b, k_a.q_odom_kf, &impl_->q_world_odom, sqrtInformation<6>(information)));
+  } else {
+    cost = std::make_unique<RelativePoseCost>(
+        RelativePoseFactor(T_a_b, sqrtInformation<6>(information)));
+  }
+  impl_->edges.push_back({a, b, std::move(cost)});
   impl_->kfs[static_cast<std::size_t>(b)].edges.push_back(index);
   impl_->kfs[static_cast<std::size_t>(a)].edges.push_back(index);
 }

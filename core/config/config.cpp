@@ -159,6 +159,7 @@ void visitBackend(V& v, BackendConfig& c) {
     g.field("level_tolerance_deg", x.level_tolerance_deg);
     g.field("first_tilt_sigma", x.first_tilt_sigma);
     g.field("tilt_prior_sigma", x.tilt_prior_sigma);
+    g.field("heading_frame_edges", x.heading_frame_edges);
     g.field("max_iterations", x.max_iterations);
     g.field("window_keyframes", x.window_keyframes);
     g.field("window_held_observations", x.window_held_observations);

@@ -24,6 +24,26 @@ Pose randomPose(std::mt19937& rng) {
   return Pose(q, Eigen::Vector3d(3 * g(rng), 3 * g(rng), g(rng)));
 }
 
+/// An upper-triangular 6x6 square-root information, 20 on the diagonal.
+Eigen::Matrix<double, 6, 6> randomSqrtInfo6(std::mt19937& rng) {
+  std::uniform_real_distribution<double> u(-0.2, 0.2);
+  Eigen::Matrix<double, 6, 6> L = Eigen::Matrix<double, 6, 6>::Identity() * 20.0;
+  for (int r = 0; r < 6; ++r)
+    for (int c = r + 1; c < 6; ++c) L(r, c) = u(rng);
+  return L;
+}
+
+/// The parameter blocks (q_a, t_a, q_b, t_b) of a relative-pose cost.
+std::vector<std::vector<double>> twoPoseValues(const Eigen::Quaterniond& qa,
+                                               const Eigen::Vector3d& ta,
+                                               const Eigen::Quaterniond& qb,
+                                               const Eigen::Vector3d& tb) {
+  return {{qa.x(), qa.y(), qa.z(), qa.w()},
+          {ta.x(), ta.y(), ta.z()},
+          {qb.x(), qb.y(), qb.z(), qb.w()},
+          {tb.x(), tb.y(), tb.z()}};
+}
+
 Eigen::Matrix3d randomSqrtInfo(std::mt19937& rng) {
   std::uniform_real_distribution<double> u(-0.3, 0.3);
   Eigen::Matrix3d L = Eigen::Matrix3d::Identity() * 5.0;
@@ -144,24 +164,94 @@ TEST(RelativePoseCost, EqualsTheAutomaticDerivativesAndNumericOnManifolds) {
   std::mt19937 rng(17);
   ceres::EigenQuaternionManifold quaternion;
   const std::vector<const ceres::Manifold*> manifolds{&quaternion, nullptr, &quaternion, nullptr};
-  std::uniform_real_distribution<double> u(-0.2, 0.2);
   for (int trial = 0; trial < 30; ++trial) {
     const Pose a = randomPose(rng), b = randomPose(rng), measured = randomPose(rng);
-    Eigen::Matrix<double, 6, 6> L = Eigen::Matrix<double, 6, 6>::Identity() * 20.0;
-    for (int r = 0; r < 6; ++r)
-      for (int c = r + 1; c < 6; ++c) L(r, c) = u(rng);
+    const Eigen::Matrix<double, 6, 6> L = randomSqrtInfo6(rng);
     const RelativePoseFactor factor(measured, L);
     const RelativePoseCost analytic(factor);
     const ceres::AutoDiffCostFunction<RelativePoseFactor, 6, 4, 3, 4, 3> reference(
         new RelativePoseFactor(factor));
     const Eigen::Quaterniond &qa = a.rotation(), &qb = b.rotation();
-    const std::vector<std::vector<double>> values{
-        {qa.x(), qa.y(), qa.z(), qa.w()},
-        {a.translation().x(), a.translation().y(), a.translation().z()},
-        {qb.x(), qb.y(), qb.z(), qb.w()},
-        {b.translation().x(), b.translation().y(), b.translation().z()}};
-    expectSameEvaluation(analytic, reference, values, manifolds);
+    expectSameEvaluation(analytic, reference,
+                         twoPoseValues(qa, a.translation(), qb, b.translation()), manifolds);
   }
+}
+
+TEST(HeadingRelativePoseCost, EqualsTheAutomaticDerivativesAndNumericOnManifolds) {
+  std::mt19937 rng(19);
+  ceres::EigenQuaternionManifold quaternion;
+  const std::vector<const ceres::Manifold*> manifolds{&quaternion, nullptr, &quaternion, nullptr};
+  std::uniform_real_distribution<double> u(-0.2, 0.2);
+  for (int trial = 0; trial < 30; ++trial) {
+    const Pose a = randomPose(rng), b = randomPose(rng), measured = randomPose(rng);
+    const Eigen::Quaterniond q_odom_a = randomPose(rng).rotation();
+    const Eigen::Quaterniond levelling(
+        Eigen::AngleAxisd(0.01 * trial, Eigen::Vector3d(u(rng), u(rng), 0.0).normalized()));
+    const Eigen::Matrix<double, 6, 6> L = randomSqrtInfo6(rng);
+    const HeadingRelativePoseFactor factor(measured, q_odom_a, &levelling, L);
+    const HeadingRelativePoseCost analytic(factor);
+    const ceres::AutoDiffCostFunction<HeadingRelativePoseFactor, 6, 4, 3, 4, 3> reference(
+        new HeadingRelativePoseFactor(factor));
+    // Keyframe a where the graph keeps it: the odometry's levelled attitude
+    // turned by any yaw and tilted by up to 0.1 rad (the yaw of a far larger
+    // tilt is ill-defined, and so is the numeric derivative).
+    const Eigen::Quaterniond qa =
+        Eigen::AngleAxisd(10.0 * u(rng), Eigen::Vector3d::UnitZ()) *
+        Eigen::AngleAxisd(0.5 * u(rng), Eigen::Vector3d(u(rng), u(rng), 0.0).normalized()) *
+        (levelling * q_odom_a);
+    const Eigen::Quaterniond& qb = b.rotation();
+    expectSameEvaluation(analytic, reference,
+                         twoPoseValues(qa, a.translation(), qb, b.translation()), manifolds);
+  }
+}
+
+// The heading-frame edge: zero at the odometry's own poses (levelled), the
+// same translation residual whatever the graph's tilt of keyframe a, and
+// turned with a's yaw; the body-frame edge turns the displacement with the
+// tilt (1 m along x and 3 mrad of pitch: 3 mm of height).
+TEST(HeadingRelativePoseCost, ATiltOfTheKeyframeDoesNotTurnTheDisplacementIntoHeight) {
+  const Eigen::Quaterniond levelling(Eigen::AngleAxisd(0.004, Eigen::Vector3d::UnitX()));
+  const Pose odom_a(Eigen::Quaterniond(Eigen::AngleAxisd(0.7, Eigen::Vector3d::UnitZ()) *
+                                       Eigen::AngleAxisd(0.02, Eigen::Vector3d::UnitY())),
+                    Eigen::Vector3d(1.0, 2.0, 0.5));
+  const Pose odom_b(
+      odom_a.rotation() * Eigen::Quaterniond(Eigen::AngleAxisd(0.1, Eigen::Vector3d::UnitZ())),
+      odom_a.translation() + Eigen::Vector3d(0.8, 0.6, 0.1));
+  const Pose level(levelling, Eigen::Vector3d::Zero());
+  const Pose world_a = level * odom_a, world_b = level * odom_b;
+  const Pose T_a_b = odom_a.inverse() * odom_b;
+  const Eigen::Matrix<double, 6, 6> L = Eigen::Matrix<double, 6, 6>::Identity();
+  const HeadingRelativePoseCost heading(
+      HeadingRelativePoseFactor(T_a_b, odom_a.rotation(), &levelling, L));
+  const RelativePoseCost body(RelativePoseFactor(T_a_b, L));
+  auto evaluate = [](const ceres::CostFunction& cost, const Pose& a, const Pose& b) {
+    const Eigen::Quaterniond &qa = a.rotation(), &qb = b.rotation();
+    const double q_a[4] = {qa.x(), qa.y(), qa.z(), qa.w()},
+                 q_b[4] = {qb.x(), qb.y(), qb.z(), qb.w()};
+    const double* params[] = {q_a, a.translation().data(), q_b, b.translation().data()};
+    Eigen::Matrix<double, 6, 1> r;
+    EXPECT_TRUE(cost.Evaluate(params, r.data(), nullptr));
+    return r;
+  };
+  EXPECT_LT(evaluate(heading, world_a, world_b).norm(), 1e-12);
+  EXPECT_LT(evaluate(body, world_a, world_b).norm(), 1e-12);
+  // The graph pitches a by 3 mrad (its level floor says so); b moves with it.
+  const Pose tilt(Eigen::Quaterniond(Eigen::AngleAxisd(0.003, Eigen::Vector3d::UnitY())),
+                  Eigen::Vector3d::Zero());
+  const Pose tilted_a(tilt.rotation() * world_a.rotation(), world_a.translation());
+  const Pose tilted_b(tilt.rotation() * world_b.rotation(), world_b.translation());
+  const Eigen::Matrix<double, 6, 1> r_heading = evaluate(heading, tilted_a, tilted_b);
+  const Eigen::Matrix<double, 6, 1> r_body = evaluate(body, tilted_a, tilted_b);
+  EXPECT_LT(r_heading.head<3>().norm(), 1e-12);
+  EXPECT_GT(r_body.head<3>().norm(), 0.002);
+  // A yaw correction of a turns the displacement with it, as the body edge does.
+  const Pose yaw(Eigen::Quaterniond(Eigen::AngleAxisd(0.05, Eigen::Vector3d::UnitZ())),
+                 Eigen::Vector3d::Zero());
+  const Pose turned_a = yaw * world_a;
+  const Pose turned_b = yaw * world_b;
+  EXPECT_LT(evaluate(heading, turned_a, turned_b).norm(), 1e-12);
+  EXPECT_LT(evaluate(body, turned_a, turned_b).norm(), 1e-12);
+  EXPECT_GT(evaluate(heading, turned_a, world_b).head<3>().norm(), 0.01);
 }
 
 // A held keyframe's observation (plane-only, analytic) is the full factor with

@@ -238,7 +238,56 @@ TEST(PlaneGraph, TiltPriorHoldsKeyframesAgainstCorrelatedPlaneErrors) {
   EXPECT_EQ(GraphConfig{}.tilt_prior_sigma, 0.0);
 }
 
-/// On a stair or a split level, RANSAC also returns "planes" 2-6 deg from
+/// An odometry whose positions are right but whose attitude is pitched by
+/// 3 mrad (a LiDAR-inertial odometry's attitude and position errors are not
+/// one error): the graph levels the keyframes with the walls, and the
+/// body-frame edges then turn every step along the corridor by 3 mrad (7.5
+/// cm of height over the 29 m); the heading-frame edges keep the odometry's
+/// heights.
+TEST(PlaneGraph, HeadingFrameEdgesKeepTheOdometrysHeightsWhenTheGraphLevelsIt) {
+  const Fixture f;
+  const Eigen::Quaterniond pitch(Eigen::AngleAxisd(0.003, Eigen::Vector3d::UnitY()));
+  auto solve = [&](bool heading) {
+    GraphConfig config;
+    config.heading_frame_edges = heading;
+    PlaneGraph g{config};
+    const Eigen::Matrix3d cov = Eigen::Vector3d(1e-6, 1e-6, 1e-5).asDiagonal();
+    Eigen::Matrix<double, 6, 1> info;
+    info << 1e4, 1e4, 1e4, 1e6, 1e6, 1e6;  // 1 cm, 1 mrad per step
+    for (const PlaneLandmark& l : f.planes) g.addLandmark(l);
+    std::vector<Pose> odometry;
+    for (const Pose& T : f.truth) odometry.emplace_back(T.rotation() * pitch, T.translation());
+    for (std::size_t i = 0; i < f.truth.size(); ++i) {
+      const int k = g.addKeyframe(odometry[i]);
+      g.setTiltReference(k, odometry[i].rotation());
+      if (k > 0)
+        g.addRelativePose(k - 1, k, odometry[i - 1].inverse() * odometry[i], info.asDiagonal());
+      for (int j = 1; j < 4; ++j) {  // the walls only: no floor holds the height
+        const auto [n, d] = f.observe(k, j);
+        g.addObservation(k, j, n, d, cov);
+      }
+    }
+    g.optimise(0, 50);
+    double tilt = 0.0, height = 0.0;
+    for (int i = 0; i < g.keyframes(); ++i) {
+      const Pose T = g.keyframePose(i);
+      const Pose& truth = f.truth[static_cast<std::size_t>(i)];
+      tilt = std::max(tilt, (T.rotation() * Eigen::Vector3d::UnitZ())
+                                .cross(truth.rotation() * Eigen::Vector3d::UnitZ())
+                                .norm());
+      height = std::max(height, std::abs(T.translation().z() - truth.translation().z()));
+    }
+    return std::make_pair(tilt, height);
+  };
+  const auto [body_tilt, body_height] = solve(false);
+  const auto [heading_tilt, heading_height] = solve(true);
+  EXPECT_LT(body_tilt, 0.001);  // the walls level the keyframes in both
+  EXPECT_LT(heading_tilt, 0.001);
+  EXPECT_GT(body_height, 0.05);
+  EXPECT_LT(heading_height, 1e-4);
+  EXPECT_FALSE(GraphConfig{}.heading_frame_edges);  // off by default (docs/method/backend.md)
+}
+
 /// level: one band through parts of several treads (their fit RMS fills the
 /// RANSAC band). Each is a new landmark seen once. If such a landmark got the
 /// level prior, its one observation would say "this keyframe is tilted by the
