@@ -11,12 +11,13 @@ namespace storey::render {
 namespace {
 
 struct CellKey {
-  int x, y;
-  bool operator==(const CellKey& o) const { return x == o.x && y == o.y; }
+  int x, y, z;
+  bool operator==(const CellKey& o) const { return x == o.x && y == o.y && z == o.z; }
 };
 struct CellHash {
   std::size_t operator()(const CellKey& k) const {
-    return static_cast<std::size_t>(k.x) * 73856093u ^ static_cast<std::size_t>(k.y) * 19349663u;
+    return static_cast<std::size_t>(k.x) * 73856093u ^ static_cast<std::size_t>(k.y) * 19349663u ^
+           static_cast<std::size_t>(k.z) * 83492791u;
   }
 };
 
@@ -170,20 +171,23 @@ std::vector<int> srpOfPoints(const MapSample& map, const std::vector<WorldPatch>
     for (int i : use) flat.push_back(flatten(patches[static_cast<std::size_t>(i)], point_distance));
   }
   if (flat.empty()) return out;
+  // The patches whose box reaches each 1 m cube, in patch order: a point's
+  // first containing patch is the first of its cube's list that contains it
+  // (cubes, not columns: the storeys' floors and their observations, stacked
+  // in a column, would all be tested).
   constexpr double kCell = 1.0;
+  const auto cell = [](double c) { return static_cast<int>(std::floor(c / kCell)); };
   std::unordered_map<CellKey, std::vector<int>, CellHash> grid;
   for (std::size_t i = 0; i < flat.size(); ++i) {
     const auto& b = flat[i].box;
-    for (int x = static_cast<int>(std::floor(b.min().x() / kCell));
-         x <= static_cast<int>(std::floor(b.max().x() / kCell)); ++x)
-      for (int y = static_cast<int>(std::floor(b.min().y() / kCell));
-           y <= static_cast<int>(std::floor(b.max().y() / kCell)); ++y)
-        grid[{x, y}].push_back(static_cast<int>(i));
+    for (int x = cell(b.min().x()); x <= cell(b.max().x()); ++x)
+      for (int y = cell(b.min().y()); y <= cell(b.max().y()); ++y)
+        for (int z = cell(b.min().z()); z <= cell(b.max().z()); ++z)
+          grid[{x, y, z}].push_back(static_cast<int>(i));
   }
   for (std::size_t i = 0; i < map.size(); ++i) {
     const Eigen::Vector3d p = map.positions[i].cast<double>();
-    const auto it = grid.find(
-        {static_cast<int>(std::floor(p.x() / kCell)), static_cast<int>(std::floor(p.y() / kCell))});
+    const auto it = grid.find({cell(p.x()), cell(p.y()), cell(p.z())});
     if (it == grid.end()) continue;
     for (int k : it->second) {
       if (inside(flat[static_cast<std::size_t>(k)], p, point_distance)) {
