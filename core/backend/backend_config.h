@@ -28,7 +28,7 @@ struct SrpExtractionConfig {
   int ransac_max_points = 500;      ///< and on at most this many of its points [>= 10]
   double min_range = 0.5;           ///< scan points nearer than this are ignored [m]
   double max_range = 30.0;          ///< scan points farther than this are ignored [m]
-  int max_points = 0;               ///< of the rest, one point in k (scan order) with k the
+  int max_points = 15000;           ///< of the rest, one point in k (scan order) with k the
                                     ///< smallest keeping at most this many, each standing for k
                                     ///< scan points (counts, uncertainty) [>= 0; 0 = all]
   double min_extent = 1.0;          ///< a plane's inliers span at least this (2nd axis, 4 std) [m]
