@@ -145,28 +145,31 @@ class HeldPlaneObservationFactor : public ceres::SizedCostFunction<3, 3, 1> {
 };
 
 /// The residual r = L^T [e_t ; 2 vec(conj(q_ab) conj(q_a) q_b)] of both
-/// relative-pose costs and its Jacobians in (q_a, t_a, q_b, t_b), given the
-/// translation rows e_t, their Jacobian in q_a and in t_b (that in t_a is
-/// its negative). The rotation rows: with C = diag(-1, -1, -1, 1),
-///   de_r/dq_a = 2 (QL(conj q_ab) QR(q_b) C)_vec,  de_r/dq_b = 2 (QL(conj q_ab) QL(conj q_a))_vec.
-inline void relativePoseEvaluation(const Eigen::Matrix<double, 6, 6>& sqrt_information,
-                                   const Eigen::Quaterniond& q_ab, const Eigen::Quaterniond& q_a,
-                                   const Eigen::Quaterniond& q_b, const Eigen::Vector3d& e_t,
-                                   const Eigen::Matrix<double, 3, 4>& de_t_dqa,
-                                   const Eigen::Matrix3d& de_t_dtb, double* residual,
-                                   double** jacobians) {
-  const Eigen::Quaterniond q_a_inv = q_a.conjugate();
-  const Eigen::Quaterniond q_ab_inv = q_ab.conjugate();
-  const Eigen::Quaterniond dq = q_ab_inv * (q_a_inv * q_b);
+/// relative-pose costs, given their translation rows e_t.
+inline void relativePoseResidual(const Eigen::Matrix<double, 6, 6>& sqrt_information,
+                                 const Eigen::Quaterniond& q_ab, const Eigen::Quaterniond& q_a,
+                                 const Eigen::Quaterniond& q_b, const Eigen::Vector3d& e_t,
+                                 double* residual) {
+  const Eigen::Quaterniond dq = q_ab.conjugate() * (q_a.conjugate() * q_b);
   Eigen::Matrix<double, 6, 1> e;
   e.head<3>() = e_t;
   e.tail<3>() = 2.0 * dq.vec();
   Eigen::Map<Eigen::Matrix<double, 6, 1>> r(residual);
   r = sqrt_information * e;
-  if (!jacobians) return;
+}
+
+/// Their Jacobians in (q_a, t_a, q_b, t_b) (null blocks: not wanted), given
+/// the translation rows' Jacobian in q_a and in t_b (that in t_a is its
+/// negative). The rotation rows: with C = diag(-1, -1, -1, 1),
+///   de_r/dq_a = 2 (QL(conj q_ab) QR(q_b) C)_vec,  de_r/dq_b = 2 (QL(conj q_ab) QL(conj q_a))_vec.
+inline void relativePoseJacobians(const Eigen::Matrix<double, 6, 6>& sqrt_information,
+                                  const Eigen::Quaterniond& q_ab, const Eigen::Quaterniond& q_a,
+                                  const Eigen::Quaterniond& q_b,
+                                  const Eigen::Matrix<double, 3, 4>& de_t_dqa,
+                                  const Eigen::Matrix3d& de_t_dtb, double** jacobians) {
   const Eigen::Matrix<double, 6, 3> S_translation = sqrt_information.leftCols<3>();
   const Eigen::Matrix<double, 6, 3> S_rotation = sqrt_information.rightCols<3>();
-  const Eigen::Matrix4d L_ab = quaternionLeft(q_ab_inv);
+  const Eigen::Matrix4d L_ab = quaternionLeft(q_ab.conjugate());
   if (jacobians[0]) {
     Eigen::Matrix4d ddq_dqa = L_ab * quaternionRight(q_b);
     ddq_dqa.leftCols<3>() *= -1.0;  // d conj(q_a) / d q_a
@@ -178,7 +181,7 @@ inline void relativePoseEvaluation(const Eigen::Matrix<double, 6, 6>& sqrt_infor
     J = -S_translation * de_t_dtb;
   }
   if (jacobians[2]) {
-    const Eigen::Matrix4d ddq_dqb = L_ab * quaternionLeft(q_a_inv);
+    const Eigen::Matrix4d ddq_dqb = L_ab * quaternionLeft(q_a.conjugate());
     Eigen::Map<Eigen::Matrix<double, 6, 4, Eigen::RowMajor>> J(jacobians[2]);
     J = S_rotation * (2.0 * ddq_dqb.topRows<3>());
   }
@@ -203,11 +206,13 @@ class RelativePoseCost : public ceres::SizedCostFunction<6, 4, 3, 4, 3> {
     const Eigen::Map<const Eigen::Quaterniond> q_a(parameters[0]), q_b(parameters[2]);
     const Eigen::Map<const Eigen::Vector3d> t_a(parameters[1]), t_b(parameters[3]);
     const Eigen::Vector3d v = t_b - t_a;
+    relativePoseResidual(f_.sqrt_information, f_.q_ab, q_a, q_b, q_a.conjugate() * v - f_.t_ab,
+                         residual);
+    if (!jacobians) return true;
     Eigen::Matrix<double, 3, 4> df_dqa;
     Eigen::Matrix3d M;
     conjugateRotationJacobians(q_a, v, df_dqa, M);
-    relativePoseEvaluation(f_.sqrt_information, f_.q_ab, q_a, q_b, q_a.conjugate() * v - f_.t_ab,
-                           df_dqa, M, residual, jacobians);
+    relativePoseJacobians(f_.sqrt_information, f_.q_ab, q_a, q_b, df_dqa, M, jacobians);
     return true;
   }
 
@@ -236,13 +241,15 @@ class HeadingRelativePoseCost : public ceres::SizedCostFunction<6, 4, 3, 4, 3> {
     const double s = 2.0 * C.w() * C.z() / n2;
     const Eigen::Vector3d v = t_b - t_a;
     const Eigen::Vector3d u(c * v.x() + s * v.y(), -s * v.x() + c * v.y(), v.z());
+    relativePoseResidual(f_.sqrt_information, f_.q_ab, q_a, q_b, u - f_.levelledDisplacement(),
+                         residual);
+    if (!jacobians) return true;
     Eigen::Matrix3d Rt;  // Rz(psi)^T
     Rt << c, s, 0.0, -s, c, 0.0, 0.0, 0.0, 1.0;
     const Eigen::RowVector4d dpsi_dC = (2.0 / n2) * Eigen::RowVector4d(0.0, 0.0, C.w(), -C.z());
     const Eigen::Matrix<double, 3, 4> du_dqa =
         Eigen::Vector3d(u.y(), -u.x(), 0.0) * (dpsi_dC * quaternionRight(p));
-    relativePoseEvaluation(f_.sqrt_information, f_.q_ab, q_a, q_b, u - f_.levelledDisplacement(),
-                           du_dqa, Rt, residual, jacobians);
+    relativePoseJacobians(f_.sqrt_information, f_.q_ab, q_a, q_b, du_dqa, Rt, jacobians);
     return true;
   }
 
