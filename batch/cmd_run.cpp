@@ -33,6 +33,7 @@ int runStoppable(const RunOptions& options) {
   if (options.threads == 1) {
     config.input.read_ahead_scans = 0;
     config.backend.queue_scans = 0;
+    config.map.build_threads = 1;
     config.map.export_threads = 1;
     config.odometry.threads = 1;
   }

@@ -178,6 +178,7 @@ void visitMap(V& v, MapConfig& c) {
   v.field("voxel_size", c.voxel_size);
   v.field("max_range", c.max_range);
   v.field("spill_to_disk", c.spill_to_disk);
+  v.field("build_threads", c.build_threads);
   v.field("export_threads", c.export_threads);
 }
 

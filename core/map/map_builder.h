@@ -9,7 +9,7 @@
 /// by default in an anonymous temporary file (MapConfig::spill_to_disk), so
 /// the RAM held while the log streams is a few bytes per keyframe. build()
 /// streams the scans back one by one into a hash grid of the map's voxels
-/// (28-byte accumulator + 8-byte key, in chunks that grow without
+/// (32-byte accumulator + 8-byte key, in chunks that grow without
 /// reallocation, + 16-32 bytes of open-addressing table per voxel, grown
 /// with the map), then emits the MapCloud (31 bytes a point), freeing the
 /// accumulators as it goes: peak memory is proportional to the map, not to

@@ -15,6 +15,9 @@ struct MapConfig {
   double voxel_size = 0.02;   ///< map resolution: one point (the centroid) per voxel edge [m, > 0]
   double max_range = 40.0;    ///< keyframe points farther from the sensor are left out [m, > 0]
   bool spill_to_disk = true;  ///< keep the keyframe scans in an anonymous temporary file, not RAM
+  /// Threads of build(): the map's voxels in this many parts of the key space,
+  /// merged at once (the same cloud with any number) [1, 64].
+  int build_threads = 2;
   int export_threads = 2;  ///< map files written at once (each by one thread; same bytes) [1, 64]
 
   /// Checks value ranges; throws storey::Error naming the key (under `map.`) at fault.

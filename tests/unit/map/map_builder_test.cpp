@@ -182,6 +182,46 @@ TEST_P(MapBuilderTest, EveryVoxelGetsItsPointsInOrderWhateverTheirNumber) {
   }
 }
 
+TEST_P(MapBuilderTest, AnyNumberOfBuildThreadsGivesTheSameCloud) {
+  // Scans that overlap (the same voxels seen again, in other orders) and
+  // more points than one block, so voxels of every part interleave.
+  std::vector<Scan> scans;
+  std::vector<Pose> poses;
+  std::uint32_t state = 12345;
+  auto uniform = [&state]() {
+    state = state * 1664525u + 1013904223u;
+    return static_cast<float>(state >> 8) / static_cast<float>(1u << 24);
+  };
+  for (int s = 0; s < 24; ++s) {
+    std::vector<ScanPoint> points;
+    for (int i = 0; i < 15000; ++i)
+      points.push_back(point(4.0f * uniform(), 3.0f * uniform(), 0.5f * uniform(),
+                             100.0f * uniform(), 0.1f * uniform()));
+    scans.push_back(makeScan(1'000'000'000LL + s * 100'000'000LL, std::move(points)));
+    poses.emplace_back(Eigen::Quaterniond(Eigen::AngleAxisd(0.05 * s, Eigen::Vector3d::UnitZ())),
+                       Eigen::Vector3d(0.1 * s, 0.0, 0.01 * s));
+  }
+  std::vector<MapCloud> clouds;
+  for (int threads : {1, 2, 3}) {
+    MapConfig config;
+    config.spill_to_disk = GetParam();
+    config.build_threads = threads;
+    MapBuilder builder(config);
+    for (int s = 0; s < 24; ++s) builder.addScan(s, scans[static_cast<std::size_t>(s)], s / 4);
+    clouds.push_back(builder.build(poses));
+  }
+  ASSERT_GT(clouds[0].size(), 100000u);
+  for (std::size_t c = 1; c < clouds.size(); ++c) {
+    ASSERT_EQ(clouds[c].size(), clouds[0].size());
+    for (std::size_t i = 0; i < clouds[0].size(); ++i) {
+      ASSERT_EQ(clouds[c].positions[i], clouds[0].positions[i]) << "point " << i;
+      ASSERT_EQ(clouds[c].intensity[i], clouds[0].intensity[i]) << "point " << i;
+      ASSERT_EQ(clouds[c].time[i], clouds[0].time[i]) << "point " << i;
+      ASSERT_EQ(clouds[c].keyframe[i], clouds[0].keyframe[i]) << "point " << i;
+    }
+  }
+}
+
 INSTANTIATE_TEST_SUITE_P(Storage, MapBuilderTest, ::testing::Values(true, false),
                          [](const auto& param_info) {
                            return param_info.param ? "Disk" : "Memory";
