@@ -215,7 +215,12 @@ StoreySegmentation segmentStoreys(MapCloud& map,
   const Subsample sub = subsample(map, config.voxel_size);
   stats.subsampled_points = sub.points.size();
   if (sub.points.size() < 16) return result;
-  std::vector<Eigen::Vector3d> normals = estimateNormals(sub.points, config.normal_neighbours);
+  // The neighbours of the normals (the point and its normal_neighbours nearest)
+  // and of the region growing (normal_neighbours, the point among them).
+  const std::size_t k_nearest = std::min<std::size_t>(
+      static_cast<std::size_t>(config.normal_neighbours), sub.points.size() - 1);
+  const NearestNeighbours neighbours = findNearestNeighbours(sub.points, k_nearest + 1);
+  std::vector<Eigen::Vector3d> normals = estimateNormals(sub.points, neighbours);
   auto sensorOf = [&](std::int32_t keyframe) -> const Eigen::Vector3d* {
     if (keyframe < 0 || static_cast<std::size_t>(keyframe) >= keyframe_positions.size())
       return nullptr;
@@ -236,7 +241,7 @@ StoreySegmentation segmentStoreys(MapCloud& map,
   const std::size_t min_points =
       std::max<std::size_t>(3, static_cast<std::size_t>(0.5 * config.min_region_area / cell_area));
   const std::vector<PlanarRegion> regions =
-      detectPlanarRegions(sub.points, normals, config.normal_neighbours, config.plane_distance,
+      detectPlanarRegions(sub.points, normals, neighbours, k_nearest, config.plane_distance,
                           config.plane_angle_deg, min_points);
   stats.regions = regions.size();
   // A region's side is the majority of its points' sensor-oriented normals

@@ -26,6 +26,7 @@
 ///    outer boundary as a polygon and the area of its interior.
 #include <Eigen/Core>
 #include <array>
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -88,14 +89,29 @@ struct PlanarRegion {
   Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
 };
 
-/// PCA normals (CGAL::pca_estimate_normals over `neighbours` nearest points), unit, unoriented.
+/// Every point's nearest neighbours (itself among them, nearest first), found
+/// once with CGAL's kd-tree (on every core; each point's list is CGAL's, in its
+/// order) and shared by the normals and the region growing.
+struct NearestNeighbours {
+  std::size_t k = 0;                   ///< neighbours a point at most
+  std::vector<std::uint32_t> count;    ///< per point (k, or fewer in a smaller set)
+  std::vector<std::uint32_t> indices;  ///< point i's: [i * k, i * k + count[i])
+};
+NearestNeighbours findNearestNeighbours(const std::vector<Eigen::Vector3d>& points, std::size_t k);
+
+/// PCA normals over each point's `neighbours.k` nearest points (what
+/// CGAL::pca_estimate_normals computes with k - 1 neighbours, which it
+/// counts without the point itself), unit, unoriented.
 std::vector<Eigen::Vector3d> estimateNormals(const std::vector<Eigen::Vector3d>& points,
-                                             int neighbours);
-/// CGAL region growing on a point set with normals.
+                                             const NearestNeighbours& neighbours);
+/// CGAL region growing on a point set with normals, over each point's first
+/// `k` nearest neighbours (k <= neighbours.k), seeds in CGAL's order (the
+/// least squares plane fit's score, computed on every core).
 std::vector<PlanarRegion> detectPlanarRegions(const std::vector<Eigen::Vector3d>& points,
                                               const std::vector<Eigen::Vector3d>& normals,
-                                              int neighbours, double max_distance,
-                                              double max_angle_deg, std::size_t min_points);
+                                              const NearestNeighbours& neighbours, std::size_t k,
+                                              double max_distance, double max_angle_deg,
+                                              std::size_t min_points);
 
 struct Footprint {
   std::vector<Eigen::Vector2d> polygon;  ///< longest boundary loop, counter-clockwise
