@@ -2,15 +2,17 @@
 # Side-by-side speed of two builds of `storey run` on one log (issue 23,
 # docs/benchmarks.md "Speed"):
 #   scripts/speed_compare.sh [-o DIR] [--runs N] [--spec SPEC] [--duration S] [--log LOG --calibration YAML]
-#                            BEFORE AFTER
+#                            [--render] BEFORE AFTER
 # BEFORE and AFTER are `storey` binaries. The previous release's, for
 # example: git worktree add ../storey-prev REV && (cd ../storey-prev &&
 # scripts/build.sh --target storey), then ../storey-prev/build/release/batch/storey.
 # The log is simulated once into DIR/sim from SPEC (default `default`, cut to
 # --duration seconds, default 120) unless --log is given. The two builds map
 # it alternately (BEFORE, AFTER, BEFORE, ...) N times each (default 3), with
-# --no-render; each run's wall and CPU time (/usr/bin/time), its peak RSS,
-# the odometry's median per scan and the back end's median CPU time per
+# --no-render unless --render is given (the whole run, renders included:
+# issue 23's real-time target); each run's wall and CPU time (/usr/bin/time),
+# its real-time factor (the log's duration over the wall time), its peak
+# RSS, the odometry's median per scan and the back end's median CPU time per
 # keyframe (report.json) are kept in DIR/runs.csv. Prints
 # the medians per build and the ratios AFTER / BEFORE, and whether the two
 # builds wrote the same trajectory.tum. Run it on an otherwise idle machine.
@@ -22,6 +24,7 @@ spec=default
 duration=120
 log=""
 calibration=""
+render=0
 builds=()
 while [[ $# -gt 0 ]]; do
   case "$1" in
@@ -31,6 +34,7 @@ while [[ $# -gt 0 ]]; do
     --duration) duration="$2"; shift 2 ;;
     --log) log="$2"; shift 2 ;;
     --calibration) calibration="$2"; shift 2 ;;
+    --render) render=1; shift ;;
     -*) echo "speed_compare.sh: unknown option $1" >&2; exit 1 ;;
     *) builds+=("$1"); shift ;;
   esac
@@ -67,10 +71,11 @@ if [[ -z "$log" ]]; then
   log="$sim/simulation.bag"
   calibration="$sim/calibration.yaml"
 fi
-run_args=(--no-render)
+run_args=()
+if [[ $render == 0 ]]; then run_args+=(--no-render); fi
 if [[ -n "$calibration" ]]; then run_args+=(--calibration "$calibration"); fi
 
-echo "build,run,wall_s,cpu_s,peak_mib,odometry_ms_per_scan,backend_cpu_ms_per_keyframe" >"$out/runs.csv"
+echo "build,run,wall_s,realtime_x,cpu_s,peak_mib,odometry_ms_per_scan,backend_cpu_ms_per_keyframe" >"$out/runs.csv"
 for ((k = 1; k <= runs; ++k)); do
   for which in before after; do
     bin="$before"
@@ -80,22 +85,24 @@ for ((k = 1; k <= runs; ++k)); do
     /usr/bin/time -f "%e %U %S %M" -o "$out/time.txt" "$bin" run "$log" "${run_args[@]}" -o "$dir" \
       >"$out/run-$which.log" 2>&1
     read -r wall user sys rss_kb <"$out/time.txt"
-    read -r odometry backend < <(python3 - "$dir/report.json" <<'PY'
+    read -r duration_s odometry backend < <(python3 - "$dir/report.json" <<'PY'
 import json, sys
 r = json.load(open(sys.argv[1]))
 backend = (r.get("backend") or {}).get("timing_ms_per_keyframe", {}).get("total_cpu", {})
-print(r["odometry"]["timing_ms"]["total_per_scan"]["median"], backend.get("median", "nan"))
+print(r["log_duration_s"], r["odometry"]["timing_ms"]["total_per_scan"]["median"],
+      backend.get("median", "nan"))
 PY
 )
-    echo "$which,$k,$wall,$(python3 -c "print($user + $sys)"),$((rss_kb / 1024)),$odometry,$backend" >>"$out/runs.csv"
-    echo "speed_compare: $which run $k: wall $wall s, odometry $odometry ms per scan, back end $backend ms per keyframe (CPU)"
+    realtime="$(python3 -c "print(round($duration_s / $wall, 3))")"
+    echo "$which,$k,$wall,$realtime,$(python3 -c "print($user + $sys)"),$((rss_kb / 1024)),$odometry,$backend" >>"$out/runs.csv"
+    echo "speed_compare: $which run $k: wall $wall s (${realtime}x real time), odometry $odometry ms per scan, back end $backend ms per keyframe (CPU)"
   done
 done
 
 python3 - "$out/runs.csv" <<'PY'
 import csv, statistics, sys
 rows = list(csv.DictReader(open(sys.argv[1])))
-cols = ["wall_s", "cpu_s", "peak_mib", "odometry_ms_per_scan", "backend_cpu_ms_per_keyframe"]
+cols = ["wall_s", "realtime_x", "cpu_s", "peak_mib", "odometry_ms_per_scan", "backend_cpu_ms_per_keyframe"]
 med = {b: {c: statistics.median(float(r[c]) for r in rows if r["build"] == b) for c in cols}
        for b in ("before", "after")}
 print(f"{'median of ' + str(len(rows) // 2) + ' runs':28} {'before':>10} {'after':>10} {'after/before':>13}")
