@@ -57,18 +57,25 @@ int runStoppable(const RunOptions& options) {
                            (std::filesystem::path(sim_dir) / sim::kCalibrationFile).string());
   }
   ProgressBar bar("run");
-  // Only the report is kept: the map and the rest are freed before the
-  // renders, which read the written files (peak memory, issue 23).
-  const std::string report_json = runPipeline(log_path, config, options.out_dir,
-                                              stoppable(bar.callback()), bar.logTimeCallback())
-                                      .report_json;
+  PipelineResult result = runPipeline(log_path, config, options.out_dir, stoppable(bar.callback()),
+                                      bar.logTimeCallback());
   bar.done();
+  // Only the report and the map's display sample are kept: the map and the
+  // rest are freed before the renders (peak memory, issue 23), which read
+  // the other written files back.
+  const std::string report_json = std::move(result.report_json);
+  std::shared_ptr<const render::MapSample> map_sample;
+  if (config.render.enabled && result.map)
+    map_sample = std::make_shared<const render::MapSample>(
+        render::sampleMap(*result.map, static_cast<std::size_t>(config.render.max_display_points)));
+  result = PipelineResult();
   if (config.render.enabled) {
     // The SLAM outputs are written: a render failure is only a warning here.
     try {
       render::RenderRequest request;
       request.out_dir = options.out_dir;
       request.ground_truth = ground_truth;
+      request.map_sample = map_sample;
       ProgressBar render_bar("render");
       const render::RenderSummary summary =
           render::renderRun(request, config.render, stoppable(render_bar.callback()));

@@ -93,6 +93,36 @@ std::uint64_t splitmix64(std::uint64_t x) {
 
 }  // namespace
 
+DisplaySubsample::DisplaySubsample(std::size_t points, std::size_t max_points)
+    : all_(points <= max_points) {
+  const double fraction =
+      all_ ? 1.0 : static_cast<double>(max_points) / static_cast<double>(points);
+  threshold_ = all_ ? ~0ull : static_cast<std::uint64_t>(fraction * 18446744073709551615.0);
+  reserve_ = all_ ? points : max_points + max_points / 50 + 16;
+}
+
+bool DisplaySubsample::keeps(std::size_t index) const {
+  return all_ || splitmix64(index) <= threshold_;
+}
+
+MapSample sampleMap(const MapCloud& map, std::size_t max_points) {
+  MapSample out;
+  out.file_points = map.size();
+  const DisplaySubsample subsample(map.size(), max_points);
+  out.positions.reserve(subsample.reserve());
+  out.keyframe.reserve(subsample.reserve());
+  out.storey.reserve(subsample.reserve());
+  out.stairs.reserve(subsample.reserve());
+  for (std::size_t i = 0; i < map.size(); ++i) {
+    if (!subsample.keeps(i) || !map.positions[i].allFinite()) continue;
+    out.positions.push_back(map.positions[i]);
+    out.keyframe.push_back(map.keyframe[i]);
+    out.storey.push_back(map.storey[i]);
+    out.stairs.push_back((map.flags[i] & kMapPointStairs) ? 1 : 0);
+  }
+  return out;
+}
+
 MapSample readMapSample(const std::string& path, std::size_t max_points) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw Error(path + ": cannot open the map");
@@ -164,16 +194,11 @@ MapSample readMapSample(const std::string& path, std::size_t max_points) {
 
   MapSample out;
   out.file_points = vertices;
-  const bool all = vertices <= max_points;
-  const double fraction =
-      all ? 1.0 : static_cast<double>(max_points) / static_cast<double>(vertices);
-  const std::uint64_t threshold =
-      all ? ~0ull : static_cast<std::uint64_t>(fraction * 18446744073709551615.0);
-  const std::size_t reserve = all ? vertices : max_points + max_points / 50 + 16;
-  out.positions.reserve(reserve);
-  out.keyframe.reserve(reserve);
-  out.storey.reserve(reserve);
-  out.stairs.reserve(reserve);
+  const DisplaySubsample subsample(vertices, max_points);
+  out.positions.reserve(subsample.reserve());
+  out.keyframe.reserve(subsample.reserve());
+  out.storey.reserve(subsample.reserve());
+  out.stairs.reserve(subsample.reserve());
   constexpr std::size_t kChunk = 65536;
   std::vector<char> buffer(kChunk * static_cast<std::size_t>(record));
   std::size_t done = 0;
@@ -187,7 +212,7 @@ MapSample readMapSample(const std::string& path, std::size_t max_points) {
     }
     for (std::size_t i = 0; i < n; ++i) {
       const std::size_t index = done + i;
-      if (!all && splitmix64(index) > threshold) continue;
+      if (!subsample.keeps(index)) continue;
       const char* r = buffer.data() + i * static_cast<std::size_t>(record);
       const Eigen::Vector3f p(static_cast<float>(readValue(r + x.offset, x.type)),
                               static_cast<float>(readValue(r + y.offset, y.type)),

@@ -80,7 +80,8 @@ RenderSummary renderRun(const RenderRequest& request, const RenderConfig& config
     if (progress && !progress(fraction, stage)) throw Cancelled();
   };
   report(0.0, "reading the run");
-  const RunData run = loadRun(request.out_dir, static_cast<std::size_t>(config.max_display_points));
+  const RunData run = loadRun(request.out_dir, static_cast<std::size_t>(config.max_display_points),
+                              request.map_sample.get());
   summary.notes = run.notes;
   summary.map_points = run.map.file_points;
   summary.display_points = run.map.size();

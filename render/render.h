@@ -4,6 +4,7 @@
 /// (starting a private Xvfb when there is no X display), then rewrites
 /// OUTDIR/report.md with the images and writes OUTDIR/report.html.
 /// docs/renders.md lists the images.
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -11,6 +12,7 @@
 #include "common/progress.h"
 #include "config/render_config.h"
 #include "export/report_markdown.h"
+#include "render/run_data.h"
 
 namespace storey::render {
 
@@ -19,6 +21,9 @@ struct RenderRequest {
   std::optional<int> keyframe;       ///< keyframe view; default: config.keyframe
   std::string ground_truth;          ///< TUM file; empty = no trajectory comparison
   std::vector<std::string> compare;  ///< other run folders (e.g. --no-srp) drawn with it
+  /// The map's display sample (sampleMap, run_data.h) when the caller still
+  /// has the map in memory (`storey run`): map.ply is then not read back.
+  std::shared_ptr<const MapSample> map_sample;
 };
 
 struct RenderSummary {

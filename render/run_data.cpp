@@ -33,7 +33,7 @@ int storeyOfElevation(const std::vector<StoreyEntry>& storeys, double z, double 
   return result;
 }
 
-RunData loadRun(const std::string& dir, std::size_t max_points) {
+RunData loadRun(const std::string& dir, std::size_t max_points, const MapSample* map_sample) {
   namespace fs = std::filesystem;
   RunData run;
   run.dir = dir;
@@ -56,7 +56,9 @@ RunData loadRun(const std::string& dir, std::size_t max_points) {
     run.storeys = readStoreysJson((d / "storeys.json").string());
   else
     run.notes.push_back("no storeys.json: the map is shown as one storey");
-  if (fs::exists(d / "map.ply"))
+  if (map_sample != nullptr)
+    run.map = *map_sample;
+  else if (fs::exists(d / "map.ply"))
     run.map = readMapSample((d / "map.ply").string(), max_points);
   else
     run.notes.push_back("no map.ply: the trajectory is drawn without the map");

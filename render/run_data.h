@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "map/map_cloud.h"
 #include "trajectory/tum.h"
 #include "types/plane_map.h"
 
@@ -30,6 +31,26 @@ struct MapSample {
 /// when the file has at most max_points, otherwise a uniform deterministic
 /// subsample of about max_points (each vertex by a hash of its index).
 MapSample readMapSample(const std::string& path, std::size_t max_points);
+
+/// The same sample taken from the map in memory (what map.ply holds, point
+/// for point): `storey run` hands it to its renders, which then need not read
+/// the file back.
+MapSample sampleMap(const MapCloud& map, std::size_t max_points);
+
+/// The uniform subsample's rule, shared by both: the vertex of index `index`
+/// of `points` is kept when its hash is at most the threshold.
+class DisplaySubsample {
+ public:
+  DisplaySubsample(std::size_t points, std::size_t max_points);
+  bool keeps(std::size_t index) const;
+  bool all() const { return all_; }
+  std::size_t reserve() const { return reserve_; }
+
+ private:
+  bool all_ = true;
+  std::uint64_t threshold_ = ~0ull;
+  std::size_t reserve_ = 0;
+};
 
 /// The side a plane was seen from (world): its `facing`, or -normal in files without it.
 Eigen::Vector3d facingOf(const GlobalPlane& plane);
@@ -56,7 +77,10 @@ struct RunData {
   std::vector<std::string> notes;  ///< files missing and what is left out
 };
 
-RunData loadRun(const std::string& dir, std::size_t max_points);
+/// Reads the run's files; the map sample is `map_sample` when given (then
+/// map.ply is not read), else read from map.ply.
+RunData loadRun(const std::string& dir, std::size_t max_points,
+                const MapSample* map_sample = nullptr);
 
 /// Storey of elevation z by the rule of docs/outputs.md ([floor - tolerance,
 /// next floor - tolerance)); -1 without storeys.

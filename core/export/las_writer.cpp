@@ -19,6 +19,7 @@ namespace storey {
 namespace {
 
 using binary::put;
+using binary::putAt;
 using binary::putChars;
 
 /// One extra-bytes descriptor (192 bytes, LAS 1.4 R15 table 24).
@@ -138,35 +139,30 @@ void writeLas(const std::string& path, const MapCloud& cloud,
   writeFileAtomically(path, [&](std::ostream& out) {
     out.write(header.data(), static_cast<std::streamsize>(header.size()));
     out.write(vlr.data(), static_cast<std::streamsize>(vlr.size()));
-    std::string chunk;
-    constexpr std::size_t kChunk = 1 << 16;
-    chunk.reserve(kChunk * las::kRecordLength);
+    binary::RecordBuffer records(out, las::kRecordLength);
     for (std::size_t k = 0; k < n; ++k) {
       const std::size_t i = selection.at(k);
       const Eigen::Vector3d p = cloud.positions[i].cast<double>();
-      put<std::int32_t>(chunk, quantise(p.x(), 0));
-      put<std::int32_t>(chunk, quantise(p.y(), 1));
-      put<std::int32_t>(chunk, quantise(p.z(), 2));
+      char* b = records.next();
+      b = putAt<std::int32_t>(b, quantise(p.x(), 0));
+      b = putAt<std::int32_t>(b, quantise(p.y(), 1));
+      b = putAt<std::int32_t>(b, quantise(p.z(), 2));
       const float intensity = std::clamp(cloud.intensity[i], 0.0f, 65535.0f);
-      put<std::uint16_t>(chunk, static_cast<std::uint16_t>(std::lround(intensity)));
-      put<std::uint8_t>(chunk, 0x11);  // return 1 of 1
-      put<std::uint8_t>(chunk, 0);     // class flags, channel, scan direction, edge
-      put<std::uint8_t>(chunk, 1);     // classification: unclassified
+      b = putAt<std::uint16_t>(b, static_cast<std::uint16_t>(std::lround(intensity)));
+      b = putAt<std::uint8_t>(b, 0x11);  // return 1 of 1
+      b = putAt<std::uint8_t>(b, 0);     // class flags, channel, scan direction, edge
+      b = putAt<std::uint8_t>(b, 1);     // classification: unclassified
       const std::int16_t storey = cloud.storey[i];
-      put<std::uint8_t>(chunk,
-                        storey >= 0 && storey < 255 ? static_cast<std::uint8_t>(storey) : 255);
-      put<std::int16_t>(chunk, 0);   // scan angle
-      put<std::uint16_t>(chunk, 0);  // point source ID
-      put<double>(chunk, cloud.time[i]);
-      put<std::int16_t>(chunk, storey);
-      put<std::int32_t>(chunk, cloud.keyframe[i]);
-      put<std::uint8_t>(chunk, cloud.flags[i]);
-      if (chunk.size() >= kChunk * las::kRecordLength) {
-        out.write(chunk.data(), static_cast<std::streamsize>(chunk.size()));
-        chunk.clear();
-      }
+      b = putAt<std::uint8_t>(
+          b, storey >= 0 && storey < 255 ? static_cast<std::uint8_t>(storey) : std::uint8_t{255});
+      b = putAt<std::int16_t>(b, 0);   // scan angle
+      b = putAt<std::uint16_t>(b, 0);  // point source ID
+      b = putAt<double>(b, cloud.time[i]);
+      b = putAt<std::int16_t>(b, storey);
+      b = putAt<std::int32_t>(b, cloud.keyframe[i]);
+      putAt<std::uint8_t>(b, cloud.flags[i]);
     }
-    out.write(chunk.data(), static_cast<std::streamsize>(chunk.size()));
+    records.flush();
   });
 }
 

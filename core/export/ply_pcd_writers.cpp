@@ -10,22 +10,8 @@ namespace storey {
 
 namespace {
 
-using binary::put;
-
-template <typename WriteRecord>
-void writeRecords(std::ostream& out, std::size_t n, std::size_t record_size, WriteRecord record) {
-  std::string chunk;
-  constexpr std::size_t kChunk = 1 << 16;
-  chunk.reserve(kChunk * record_size);
-  for (std::size_t k = 0; k < n; ++k) {
-    record(chunk, k);
-    if (chunk.size() >= kChunk * record_size) {
-      out.write(chunk.data(), static_cast<std::streamsize>(chunk.size()));
-      chunk.clear();
-    }
-  }
-  out.write(chunk.data(), static_cast<std::streamsize>(chunk.size()));
-}
+using binary::putAt;
+using binary::RecordBuffer;
 
 }  // namespace
 
@@ -50,17 +36,20 @@ void writePly(const std::string& path, const MapCloud& cloud,
            "property int storey\n"
            "property uchar stairs\n"
            "end_header\n";
-    writeRecords(out, n, 33, [&](std::string& b, std::size_t k) {
+    RecordBuffer records(out, 33);
+    for (std::size_t k = 0; k < n; ++k) {
       const std::size_t i = selection.at(k);
-      put<float>(b, cloud.positions[i].x());
-      put<float>(b, cloud.positions[i].y());
-      put<float>(b, cloud.positions[i].z());
-      put<float>(b, cloud.intensity[i]);
-      put<double>(b, cloud.time[i]);
-      put<std::int32_t>(b, cloud.keyframe[i]);
-      put<std::int32_t>(b, cloud.storey[i]);
-      put<std::uint8_t>(b, (cloud.flags[i] & kMapPointStairs) ? 1 : 0);
-    });
+      char* b = records.next();
+      b = putAt<float>(b, cloud.positions[i].x());
+      b = putAt<float>(b, cloud.positions[i].y());
+      b = putAt<float>(b, cloud.positions[i].z());
+      b = putAt<float>(b, cloud.intensity[i]);
+      b = putAt<double>(b, cloud.time[i]);
+      b = putAt<std::int32_t>(b, cloud.keyframe[i]);
+      b = putAt<std::int32_t>(b, cloud.storey[i]);
+      putAt<std::uint8_t>(b, (cloud.flags[i] & kMapPointStairs) ? 1 : 0);
+    }
+    records.flush();
   });
 }
 
@@ -77,16 +66,19 @@ void writePcd(const std::string& path, const MapCloud& cloud,
            "COUNT 1 1 1 1 1 1 1\n"
            "WIDTH "
         << n << "\nHEIGHT 1\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS " << n << "\nDATA binary\n";
-    writeRecords(out, n, 32, [&](std::string& b, std::size_t k) {
+    RecordBuffer records(out, 32);
+    for (std::size_t k = 0; k < n; ++k) {
       const std::size_t i = selection.at(k);
-      put<float>(b, cloud.positions[i].x());
-      put<float>(b, cloud.positions[i].y());
-      put<float>(b, cloud.positions[i].z());
-      put<float>(b, cloud.intensity[i]);
-      put<double>(b, cloud.time[i]);
-      put<std::int32_t>(b, cloud.keyframe[i]);
-      put<std::int32_t>(b, cloud.storey[i]);
-    });
+      char* b = records.next();
+      b = putAt<float>(b, cloud.positions[i].x());
+      b = putAt<float>(b, cloud.positions[i].y());
+      b = putAt<float>(b, cloud.positions[i].z());
+      b = putAt<float>(b, cloud.intensity[i]);
+      b = putAt<double>(b, cloud.time[i]);
+      b = putAt<std::int32_t>(b, cloud.keyframe[i]);
+      putAt<std::int32_t>(b, cloud.storey[i]);
+    }
+    records.flush();
   });
 }
 

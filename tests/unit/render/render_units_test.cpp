@@ -2,9 +2,12 @@
 // view list, report.md images and report.html.
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <limits>
 #include <set>
 
 #include "common/error.h"
+#include "export/point_cloud_writers.h"
 #include "export/report_html.h"
 #include "export/report_markdown.h"
 #include "render/palette.h"
@@ -53,6 +56,35 @@ TEST(RenderMapPly, KeepsAllOrAUniformSubsample) {
   std::size_t low = 0;
   for (const auto& p : some.positions) low += p.y() < 100.0f;
   EXPECT_NEAR(static_cast<double>(low) / some.size(), 0.5, 0.06);
+}
+
+TEST(RenderMapPly, TheSampleOfTheMapInMemoryIsTheSampleOfItsFile) {
+  // storey run hands its renders the sample of the map in memory: it must be
+  // what they would read from the map.ply written from that map.
+  MapCloud map;
+  for (int i = 0; i < 30000; ++i) {
+    const float x = static_cast<float>(i % 173) * 0.013f;
+    map.positions.emplace_back(x, static_cast<float>(i / 173) * 0.021f, std::sin(x) * 3.0f);
+    map.intensity.push_back(static_cast<float>(i % 255));
+    map.time.push_back(1.7e9 + i * 1e-4);
+    map.keyframe.push_back(i / 100);
+    map.storey.push_back(static_cast<std::int16_t>(i % 4 - 1));
+    map.flags.push_back(static_cast<std::uint8_t>(i % 3 == 0 ? kMapPointStairs : 0));
+  }
+  map.positions[5].x() = std::numeric_limits<float>::quiet_NaN();  // left out by both
+  test::TempDir dir;
+  writePly(dir.file("map.ply"), map);
+  for (std::size_t max_points : {std::size_t{100000}, std::size_t{5000}}) {
+    const render::MapSample from_file = render::readMapSample(dir.file("map.ply"), max_points);
+    const render::MapSample in_memory = render::sampleMap(map, max_points);
+    EXPECT_EQ(in_memory.file_points, from_file.file_points);
+    ASSERT_EQ(in_memory.size(), from_file.size()) << max_points;
+    EXPECT_LT(in_memory.size(), map.size());
+    EXPECT_EQ(in_memory.positions, from_file.positions);
+    EXPECT_EQ(in_memory.keyframe, from_file.keyframe);
+    EXPECT_EQ(in_memory.storey, from_file.storey);
+    EXPECT_EQ(in_memory.stairs, from_file.stairs);
+  }
 }
 
 TEST(RenderMapPly, TruncatedOrForeignFilesAreErrorsNamingTheFile) {
