@@ -6,6 +6,7 @@
 #include <unordered_map>
 
 #include "backend/plane_hull.h"
+#include "common/parallel_chunks.h"
 
 namespace storey::render {
 namespace {
@@ -185,17 +186,22 @@ std::vector<int> srpOfPoints(const MapSample& map, const std::vector<WorldPatch>
         for (int z = cell(b.min().z()); z <= cell(b.max().z()); ++z)
           grid[{x, y, z}].push_back(static_cast<int>(i));
   }
-  for (std::size_t i = 0; i < map.size(); ++i) {
-    const Eigen::Vector3d p = map.positions[i].cast<double>();
-    const auto it = grid.find({cell(p.x()), cell(p.y()), cell(p.z())});
-    if (it == grid.end()) continue;
-    for (int k : it->second) {
-      if (inside(flat[static_cast<std::size_t>(k)], p, point_distance)) {
-        out[i] = flat[static_cast<std::size_t>(k)].plane_id;
-        break;
+  // Each point on its own: in chunks on every core.
+  constexpr std::size_t kChunk = 1 << 15;
+  const ParallelChunks parallel(0);
+  parallel.run((map.size() + kChunk - 1) / kChunk, [&](std::size_t c) {
+    for (std::size_t i = c * kChunk; i < std::min(map.size(), (c + 1) * kChunk); ++i) {
+      const Eigen::Vector3d p = map.positions[i].cast<double>();
+      const auto it = grid.find({cell(p.x()), cell(p.y()), cell(p.z())});
+      if (it == grid.end()) continue;
+      for (int k : it->second) {
+        if (inside(flat[static_cast<std::size_t>(k)], p, point_distance)) {
+          out[i] = flat[static_cast<std::size_t>(k)].plane_id;
+          break;
+        }
       }
     }
-  }
+  });
   return out;
 }
 
