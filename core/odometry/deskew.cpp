@@ -1,13 +1,10 @@
 #include "odometry/deskew.h"
 
-#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <limits>
 #include <vector>
-
-#include "common/parallel_chunks.h"
 
 namespace storey {
 
@@ -19,36 +16,41 @@ struct Transform {
   Eigen::Vector3d t_ref_lidar;
 };
 
-/// The distinct point times a scan's transforms are computed for, by their
-/// exact bits: sensors that order a scan by beam (an Ouster's cloud is row
-/// after row) come back to a column's time once per beam, and the same time
-/// gives the same transform. Open addressing, grown at half full.
-class TimesByBits {
+/// The transforms computed so far, by the exact bits of the point time they
+/// were computed for: sensors that order a scan by beam (an Ouster's cloud is
+/// row after row) come back to a column's time once per beam, and the same
+/// time gives the same transform. Open addressing; full at half its capacity,
+/// after which further times are computed without being kept.
+class TransformsByTime {
  public:
-  explicit TimesByBits(std::size_t expected) {
+  explicit TransformsByTime(std::size_t points) {
     std::size_t capacity = 1024;
-    while (capacity < 2 * expected) capacity *= 2;
+    while (capacity < points / 8) capacity *= 2;
     slots_.assign(capacity, kEmpty);
+    mask_ = capacity - 1;
+    keys_.reserve(capacity / 2);
+    transforms_.reserve(capacity / 2);
   }
 
-  /// The index of `time` among the distinct times, added when new.
-  std::uint32_t indexOf(float time) {
+  /// The transform kept for `time`, or nullptr.
+  const Transform* find(float time) const {
+    const std::uint32_t key = bitsOf(time);
+    for (std::size_t i = slotOf(key);; i = (i + 1) & mask_) {
+      const std::uint32_t index = slots_[i];
+      if (index == kEmpty) return nullptr;
+      if (keys_[index] == key) return &transforms_[index];
+    }
+  }
+
+  void keep(float time, const Transform& transform) {
+    if (transforms_.size() >= (mask_ + 1) / 2) return;
     const std::uint32_t key = bitsOf(time);
     std::size_t i = slotOf(key);
-    for (;; i = (i + 1) & (slots_.size() - 1)) {
-      const std::uint32_t index = slots_[i];
-      if (index == kEmpty) break;
-      if (keys_[index] == key) return index;
-    }
-    const auto index = static_cast<std::uint32_t>(keys_.size());
-    slots_[i] = index;
+    while (slots_[i] != kEmpty) i = (i + 1) & mask_;
+    slots_[i] = static_cast<std::uint32_t>(transforms_.size());
     keys_.push_back(key);
-    times_.push_back(time);
-    if (2 * keys_.size() > slots_.size()) grow();
-    return index;
+    transforms_.push_back(transform);
   }
-
-  const std::vector<float>& times() const { return times_; }
 
  private:
   static constexpr std::uint32_t kEmpty = std::numeric_limits<std::uint32_t>::max();
@@ -58,31 +60,22 @@ class TimesByBits {
     return bits;
   }
   std::size_t slotOf(std::uint32_t key) const {
-    return static_cast<std::size_t>((key * 0x9E3779B1u) >> 7) & (slots_.size() - 1);
-  }
-  void grow() {
-    slots_.assign(slots_.size() * 2, kEmpty);
-    for (std::size_t index = 0; index < keys_.size(); ++index) {
-      std::size_t i = slotOf(keys_[index]);
-      while (slots_[i] != kEmpty) i = (i + 1) & (slots_.size() - 1);
-      slots_[i] = static_cast<std::uint32_t>(index);
-    }
+    return static_cast<std::size_t>((key * 0x9E3779B1u) >> 7) & mask_;
   }
 
-  std::vector<std::uint32_t> slots_;  ///< index into keys_ and times_, or kEmpty
+  std::vector<std::uint32_t> slots_;  ///< index into keys_ and transforms_, or kEmpty
   std::vector<std::uint32_t> keys_;
-  std::vector<float> times_;
+  std::vector<Transform> transforms_;
+  std::size_t mask_ = 0;
 };
 
 }  // namespace
 
-Scan deskewScan(const Scan& scan, const ImuPoseTable& table, const SensorConfig& sensor,
-                const ParallelChunks* parallel) {
+Scan deskewScan(const Scan& scan, const ImuPoseTable& table, const SensorConfig& sensor) {
   Scan out;
   out.stamp_ns = scan.stamp_ns;
   out.frame_id = scan.frame_id;
-  const std::size_t n = scan.points.size();
-  out.points.resize(n);
+  out.points.resize(scan.points.size());
   const double t_ref = table.secondsSinceStart(scan.stamp_ns, sensor.time_offset_lidar_to_imu);
   const Pose T_imu_lidar = sensor.T_imu_lidar;
   const Pose T_lidar_imu = T_imu_lidar.inverse();
@@ -98,47 +91,30 @@ Scan deskewScan(const Scan& scan, const ImuPoseTable& table, const SensorConfig&
     const Pose T = T_lidar_imu * T_ref_imu_t;
     return Transform{T.rotationMatrix() * R_il, T.rotationMatrix() * t_il + T.translation()};
   };
-  // 1. The time each point's transform is computed at (from the times alone,
-  // in the points' order). Consecutive points fire microseconds apart (a
-  // VLP-16 fires its 16 lasers within 55 us): a point within kTimeTolerance
-  // of the time the previous point's transform was computed at shares it (at
-  // 1 m/s and 1 rad/s the error is below 0.03 mm and 3e-5 rad); otherwise its
-  // own time is taken, whose transform may have been computed before.
+  // Consecutive points fire microseconds apart (a VLP-16 fires its 16 lasers
+  // within 55 us): the transform is reused while a point's time is within
+  // kTimeTolerance of the one it was computed for (at 1 m/s and 1 rad/s the
+  // error is below 0.03 mm and 3e-5 rad). Otherwise the transform of that
+  // exact time is reused when it was computed before.
   constexpr float kTimeTolerance = 30e-6f;
-  std::vector<std::uint32_t> time_of_point(n);
-  TimesByBits times(n / 16 + 16);
+  TransformsByTime computed(scan.points.size());
   float cached_time = std::numeric_limits<float>::quiet_NaN();
-  std::uint32_t cached = 0;
-  for (std::size_t i = 0; i < n; ++i) {
-    const float time = scan.points[i].time;
-    if (!(std::abs(time - cached_time) <= kTimeTolerance)) {
-      cached = times.indexOf(time);
-      cached_time = time;
-    }
-    time_of_point[i] = cached;
-  }
-  // 2. The transforms, then 3. the points, in chunks of a fixed size on the
-  // caller's threads: the same bytes whatever their number.
-  const std::vector<float>& distinct = times.times();
-  std::vector<Transform> transforms(distinct.size());
-  const auto run = [parallel](std::size_t count, std::size_t chunk, const auto& fn) {
-    const std::size_t chunks = (count + chunk - 1) / chunk;
-    const auto range = [&](std::size_t c) {
-      for (std::size_t i = c * chunk; i < std::min(count, (c + 1) * chunk); ++i) fn(i);
-    };
-    if (parallel != nullptr && chunks > 1)
-      parallel->run(chunks, range);
-    else
-      for (std::size_t c = 0; c < chunks; ++c) range(c);
-  };
-  run(distinct.size(), 256, [&](std::size_t k) { transforms[k] = transformAt(distinct[k]); });
-  run(n, 4096, [&](std::size_t i) {
+  Transform current{Eigen::Matrix3d::Identity(), Eigen::Vector3d::Zero()};
+  for (std::size_t i = 0; i < scan.points.size(); ++i) {
     const ScanPoint& in = scan.points[i];
-    const Transform& current = transforms[time_of_point[i]];
+    if (!(std::abs(in.time - cached_time) <= kTimeTolerance)) {
+      if (const Transform* kept = computed.find(in.time)) {
+        current = *kept;
+      } else {
+        current = transformAt(in.time);
+        computed.keep(in.time, current);
+      }
+      cached_time = in.time;
+    }
     ScanPoint& o = out.points[i];
     o = in;
     o.p = (current.R_ref_lidar * in.p.cast<double>() + current.t_ref_lidar).cast<float>();
-  });
+  }
   return out;
 }
 

@@ -11,13 +11,9 @@
 
 namespace storey {
 
-class ParallelChunks;
-
 /// The deskewed copy of `scan` (point times kept, so they still say when each
 /// point was measured). `table` must start at or before the reference time;
-/// times past its end are extrapolated at constant velocity. With `parallel`,
-/// the transforms and the points are computed on its threads (the same bytes).
-Scan deskewScan(const Scan& scan, const ImuPoseTable& table, const SensorConfig& sensor,
-                const ParallelChunks* parallel = nullptr);
+/// times past its end are extrapolated at constant velocity.
+Scan deskewScan(const Scan& scan, const ImuPoseTable& table, const SensorConfig& sensor);
 
 }  // namespace storey

@@ -372,7 +372,7 @@ void LidarInertialOdometry::processScan(const Scan& scan) {
   // 2. Deskew with the IMU-propagated motion.
   t = Clock::now();
   const ImuPoseTable table = ImuPoseTable::fromSamples(previous, imu_, table_end_ns, gravity);
-  frame->deskewed = deskewScan(scan, table, sensor_, parallel_.get());
+  frame->deskewed = deskewScan(scan, table, sensor_);
   frame->stats.ms_deskew = msSince(t);
 
   // 3. Features.

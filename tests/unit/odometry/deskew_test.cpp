@@ -9,7 +9,6 @@
 #include <cmath>
 #include <cstring>
 
-#include "common/parallel_chunks.h"
 #include "imu/imu_pose_table.h"
 #include "sim/building_spec.h"
 #include "sim/lidar_simulator.h"
@@ -113,26 +112,6 @@ TEST(Deskew, ABeamOrderedScanGetsEachPointsOwnTransform) {
     if (i > 0 && scan.points[i].ring != scan.points[i - 1].ring) ++repeated_times;
   }
   EXPECT_GE(repeated_times, 10u) << "the fixture must come back to earlier times";
-}
-
-TEST(Deskew, TheSameBytesOnAnyNumberOfThreads) {
-  const WalkingScan fixture;
-  // The scan as it comes (firing order) and ordered beam by beam (each
-  // column's time again once per beam, as an Ouster's cloud).
-  Scan by_beam = fixture.scan;
-  std::stable_sort(by_beam.points.begin(), by_beam.points.end(),
-                   [](const ScanPoint& a, const ScanPoint& b) { return a.ring < b.ring; });
-  const ParallelChunks two(2), three(3);
-  for (const Scan* scan : std::vector<const Scan*>{&fixture.scan, &by_beam}) {
-    const Scan one = deskewScan(*scan, fixture.table, fixture.sensor);
-    for (const ParallelChunks* parallel : {&two, &three}) {
-      const Scan many = deskewScan(*scan, fixture.table, fixture.sensor, parallel);
-      ASSERT_EQ(many.points.size(), one.points.size());
-      for (std::size_t i = 0; i < one.points.size(); ++i)
-        ASSERT_EQ(std::memcmp(&many.points[i].p, &one.points[i].p, sizeof(Eigen::Vector3f)), 0)
-            << "point " << i << " on " << parallel->threads() << " threads";
-    }
-  }
 }
 
 }  // namespace
