@@ -43,7 +43,6 @@ class DisplaySubsample {
  public:
   DisplaySubsample(std::size_t points, std::size_t max_points);
   bool keeps(std::size_t index) const;
-  bool all() const { return all_; }
   std::size_t reserve() const { return reserve_; }
 
  private:

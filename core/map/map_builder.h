@@ -8,8 +8,9 @@
 /// compactly (float position, intensity and time offset: 20 bytes a point),
 /// by default in an anonymous temporary file (MapConfig::spill_to_disk), so
 /// the RAM held while the log streams is a few bytes per keyframe. build()
-/// streams the scans back one by one into a hash grid of the map's voxels
-/// (32-byte accumulator + 8-byte key, in chunks that grow without
+/// streams the scans back in blocks into a hash grid of the map's voxels, in
+/// MapConfig::build_threads parts of the key space merged at once (the same
+/// cloud with any number; 32-byte accumulator + 8-byte key, in chunks that grow without
 /// reallocation, + 16-32 bytes of open-addressing table per voxel, grown
 /// with the map), then emits the MapCloud (31 bytes a point), freeing the
 /// accumulators as it goes: peak memory is proportional to the map, not to
