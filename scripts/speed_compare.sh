@@ -11,8 +11,9 @@
 # it alternately (BEFORE, AFTER, BEFORE, ...) N times each (default 3), with
 # --no-render unless --render is given (the whole run, renders included:
 # issue 23's real-time target); each run's wall and CPU time (/usr/bin/time),
-# its real-time factor (the log's duration over the wall time), its peak
-# RSS, the odometry's median per scan and the back end's median CPU time per
+# its real-time factor (the log's duration over the wall time), the
+# report's odometry-and-back-end time and its map-storeys-exports time, its
+# peak RSS, the odometry's median per scan and the back end's median CPU time per
 # keyframe (report.json) are kept in DIR/runs.csv. Prints
 # the medians per build and the ratios AFTER / BEFORE, and whether the two
 # builds wrote the same trajectory.tum. Run it on an otherwise idle machine.
@@ -75,7 +76,7 @@ run_args=()
 if [[ $render == 0 ]]; then run_args+=(--no-render); fi
 if [[ -n "$calibration" ]]; then run_args+=(--calibration "$calibration"); fi
 
-echo "build,run,wall_s,realtime_x,cpu_s,peak_mib,odometry_ms_per_scan,backend_cpu_ms_per_keyframe" >"$out/runs.csv"
+echo "build,run,wall_s,realtime_x,slam_s,map_stage_s,cpu_s,peak_mib,odometry_ms_per_scan,backend_cpu_ms_per_keyframe" >"$out/runs.csv"
 for ((k = 1; k <= runs; ++k)); do
   for which in before after; do
     bin="$before"
@@ -85,16 +86,17 @@ for ((k = 1; k <= runs; ++k)); do
     /usr/bin/time -f "%e %U %S %M" -o "$out/time.txt" "$bin" run "$log" "${run_args[@]}" -o "$dir" \
       >"$out/run-$which.log" 2>&1
     read -r wall user sys rss_kb <"$out/time.txt"
-    read -r duration_s odometry backend < <(python3 - "$dir/report.json" <<'PY'
+    read -r duration_s slam map_stage odometry backend < <(python3 - "$dir/report.json" <<'PY'
 import json, sys
 r = json.load(open(sys.argv[1]))
 backend = (r.get("backend") or {}).get("timing_ms_per_keyframe", {}).get("total_cpu", {})
-print(r["log_duration_s"], r["odometry"]["timing_ms"]["total_per_scan"]["median"],
-      backend.get("median", "nan"))
+print(r["log_duration_s"], round(r["wall_time_s"], 3),
+      round(r["wall_time_s_total"] - r["wall_time_s"], 3),
+      r["odometry"]["timing_ms"]["total_per_scan"]["median"], backend.get("median", "nan"))
 PY
 )
     realtime="$(python3 -c "print(round($duration_s / $wall, 3))")"
-    echo "$which,$k,$wall,$realtime,$(python3 -c "print($user + $sys)"),$((rss_kb / 1024)),$odometry,$backend" >>"$out/runs.csv"
+    echo "$which,$k,$wall,$realtime,$slam,$map_stage,$(python3 -c "print($user + $sys)"),$((rss_kb / 1024)),$odometry,$backend" >>"$out/runs.csv"
     echo "speed_compare: $which run $k: wall $wall s (${realtime}x real time), odometry $odometry ms per scan, back end $backend ms per keyframe (CPU)"
   done
 done
@@ -102,7 +104,7 @@ done
 python3 - "$out/runs.csv" <<'PY'
 import csv, statistics, sys
 rows = list(csv.DictReader(open(sys.argv[1])))
-cols = ["wall_s", "realtime_x", "cpu_s", "peak_mib", "odometry_ms_per_scan", "backend_cpu_ms_per_keyframe"]
+cols = ["wall_s", "realtime_x", "slam_s", "map_stage_s", "cpu_s", "peak_mib", "odometry_ms_per_scan", "backend_cpu_ms_per_keyframe"]
 med = {b: {c: statistics.median(float(r[c]) for r in rows if r["build"] == b) for c in cols}
        for b in ("before", "after")}
 print(f"{'median of ' + str(len(rows) // 2) + ' runs':28} {'before':>10} {'after':>10} {'after/before':>13}")
