@@ -13,6 +13,19 @@ namespace {
 using binary::putAt;
 using binary::RecordBuffer;
 
+/// The fields PLY and PCD records share, in their order (32 bytes): x y z
+/// intensity (float), time (double), keyframe, storey (int32). Returns the
+/// byte after them.
+char* putSharedFields(char* b, const MapCloud& cloud, std::size_t i) {
+  b = putAt<float>(b, cloud.positions[i].x());
+  b = putAt<float>(b, cloud.positions[i].y());
+  b = putAt<float>(b, cloud.positions[i].z());
+  b = putAt<float>(b, cloud.intensity[i]);
+  b = putAt<double>(b, cloud.time[i]);
+  b = putAt<std::int32_t>(b, cloud.keyframe[i]);
+  return putAt<std::int32_t>(b, cloud.storey[i]);
+}
+
 }  // namespace
 
 void writePly(const std::string& path, const MapCloud& cloud,
@@ -39,14 +52,7 @@ void writePly(const std::string& path, const MapCloud& cloud,
     RecordBuffer records(out, 33);
     for (std::size_t k = 0; k < n; ++k) {
       const std::size_t i = selection.at(k);
-      char* b = records.next();
-      b = putAt<float>(b, cloud.positions[i].x());
-      b = putAt<float>(b, cloud.positions[i].y());
-      b = putAt<float>(b, cloud.positions[i].z());
-      b = putAt<float>(b, cloud.intensity[i]);
-      b = putAt<double>(b, cloud.time[i]);
-      b = putAt<std::int32_t>(b, cloud.keyframe[i]);
-      b = putAt<std::int32_t>(b, cloud.storey[i]);
+      char* b = putSharedFields(records.next(), cloud, i);
       putAt<std::uint8_t>(b, (cloud.flags[i] & kMapPointStairs) ? 1 : 0);
     }
     records.flush();
@@ -69,14 +75,7 @@ void writePcd(const std::string& path, const MapCloud& cloud,
     RecordBuffer records(out, 32);
     for (std::size_t k = 0; k < n; ++k) {
       const std::size_t i = selection.at(k);
-      char* b = records.next();
-      b = putAt<float>(b, cloud.positions[i].x());
-      b = putAt<float>(b, cloud.positions[i].y());
-      b = putAt<float>(b, cloud.positions[i].z());
-      b = putAt<float>(b, cloud.intensity[i]);
-      b = putAt<double>(b, cloud.time[i]);
-      b = putAt<std::int32_t>(b, cloud.keyframe[i]);
-      putAt<std::int32_t>(b, cloud.storey[i]);
+      putSharedFields(records.next(), cloud, i);
     }
     records.flush();
   });
