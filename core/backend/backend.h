@@ -37,6 +37,9 @@ struct BackendStats {
   std::array<std::int64_t, static_cast<std::size_t>(backend::PlaneReject::kCount)> plane_rejects{};
   std::int64_t wrong_associations = 0;  ///< observations beyond outlier_chi2 after the final solve
                                         ///< (down-weighted by the robust loss)
+  /// Views of level surfaces left out of the final solve as tilted
+  /// (GraphConfig::level_view_max_tilt_deg); also among wrong_associations.
+  std::int64_t tilted_level_views = 0;
   std::int64_t optimisations = 0, full_optimisations = 0;
   std::int64_t revisits = 0;  ///< keyframes that saw a plane again after more than a window
   // Wall-clock times per keyframe [ms]: extraction and association at every

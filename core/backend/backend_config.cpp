@@ -79,6 +79,8 @@ void BackendConfig::validate() const {
           "must be in [0, 1]");
   require(g.final_iterations >= 0, "graph.final_iterations", "must be >= 0");
   require(g.outlier_chi2 > 0, "graph.outlier_chi2", "must be positive");
+  require(g.level_view_max_tilt_deg >= 0 && g.level_view_max_tilt_deg < 45,
+          "graph.level_view_max_tilt_deg", "must be within [0, 45)");
 }
 
 }  // namespace storey

@@ -110,6 +110,11 @@ struct GraphConfig {
   double outlier_chi2 = 16.27;     ///< observations with a larger whitened residual after the
                                    ///< end's whole-graph solve are wrong associations: left out,
                                    ///< the graph solved again, and reported [> 0]
+  /// Views of a floor or ceiling (a landmark within level_tolerance_deg of
+  /// level) whose normal, turned by its keyframe's solved attitude, is
+  /// farther than this from vertical leave the end's whole-graph solve:
+  /// mixed fits (backend/level_view.h) [deg, [0, 45)]; 0 = off
+  double level_view_max_tilt_deg = 0.0;
 };
 
 /// The back end (SRP constraints, keyframe graph).

@@ -7,6 +7,7 @@
 
 #include "backend/fit_noise.h"
 #include "backend/keyframe_rule.h"
+#include "backend/level_view.h"
 #include "backend/odometry_information.h"
 #include "backend/plane_graph.h"
 #include "backend/solve_schedule.h"
@@ -295,6 +296,27 @@ struct SrpBackend::Impl {
     return graph.observationExcluded(o.graph_index) || isWrongAssociation(o, chi2);
   }
 
+  /// Leaves the views of level surfaces that are tilted under the current
+  /// estimate out of later solves (level_view.h); returns how many.
+  int excludeTiltedLevelViews() {
+    const double deg = M_PI / 180.0;
+    const double max_tilt = config.graph.level_view_max_tilt_deg * deg;
+    if (max_tilt <= 0.0) return 0;
+    int excluded = 0;
+    for (const ObservationRecord& o : observations) {
+      if (graph.observationExcluded(o.graph_index)) continue;
+      const Eigen::Vector3d n_view_world =
+          graph.keyframePose(kfs[static_cast<std::size_t>(o.keyframe)].graph_index).rotation() *
+          o.plane_keyframe.normal();
+      if (!backend::isTiltedLevelView(graph.landmark(o.plane).n_world, n_view_world,
+                                      config.graph.level_tolerance_deg * deg, max_tilt))
+        continue;
+      graph.excludeObservation(o.graph_index);
+      ++excluded;
+    }
+    return excluded;
+  }
+
   /// Leaves the wrong associations at the current estimate out of later
   /// solves; returns how many were newly left out.
   int excludeWrongAssociations() {
@@ -375,6 +397,7 @@ SlamResult SrpBackend::finish(const Scan& last_deskewed) {
   std::vector<Eigen::Vector3f>().swap(m.keyframe_points);
   const auto t = Clock::now();
   m.levelFirstKeyframe();
+  m.stats.tilted_level_views = m.excludeTiltedLevelViews();
   if (m.config.graph.final_iterations > 0 && m.graph.observations() > 0) {
     m.graph.optimise(0, m.config.graph.final_iterations);
     // The observations the solve shows to be wrong associations pull the

@@ -167,6 +167,7 @@ void visitBackend(V& v, BackendConfig& c) {
     g.field("full_every_share", x.full_every_share);
     g.field("final_iterations", x.final_iterations);
     g.field("outlier_chi2", x.outlier_chi2);
+    g.field("level_view_max_tilt_deg", x.level_view_max_tilt_deg);
   });
 }
 

@@ -251,7 +251,12 @@ nlohmann::json backendJson(const Config& config, const std::optional<BackendStat
             {"wrong_associations", b.wrong_associations},
             {"wrong_associations_meaning",
              "observations whose residual after the end's whole-graph solve exceeds "
-             "graph.outlier_chi2: left out of one more whole-graph solve"}}},
+             "graph.outlier_chi2: left out of one more whole-graph solve"},
+            {"tilted_level_views", b.tilted_level_views},
+            {"tilted_level_views_meaning",
+             "views of a floor or ceiling tilted by more than graph.level_view_max_tilt_deg "
+             "under the solved poses: left out of the end's whole-graph solve (counted among "
+             "wrong_associations too)"}}},
           {"detected_planes_not_srp", planes},
           {"optimisations", b.optimisations},
           {"full_optimisations", b.full_optimisations},

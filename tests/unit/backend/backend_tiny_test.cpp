@@ -147,6 +147,51 @@ TEST_F(BackendTiny, RoughFitsTakeNoPartInTheAssociation) {
   EXPECT_LE(association.at("outcomes").at("rough_fit").get<int>(), srps - 20);
 }
 
+TEST_F(BackendTiny, TiltedViewsOfLevelSurfacesLeaveTheFinalSolve) {
+  // A gate no view of a floor exceeds changes nothing: the same trajectory
+  // as with the gate off (the default).
+  const PipelineResult off = runPipeline(bag(), config(true), file("out_tilt_off"));
+  Config wide = config(true);
+  wide.backend.graph.level_view_max_tilt_deg = 30.0;
+  const std::string out_wide = file("out_tilt_wide");
+  const PipelineResult r_wide = runPipeline(bag(), wide, out_wide);
+  ASSERT_EQ(r_wide.trajectory.size(), off.trajectory.size());
+  for (std::size_t i = 0; i < off.trajectory.size(); ++i)
+    ASSERT_EQ(r_wide.trajectory[i].pose.translation(), off.trajectory[i].pose.translation()) << i;
+  std::ifstream wide_report(std::filesystem::path(out_wide) / "report.json");
+  EXPECT_EQ(nlohmann::json::parse(wide_report)["backend"]["association"]["tilted_level_views"], 0);
+
+  // A gate every real view exceeds (no fit is level to 1e-6 deg): every
+  // view of a floor or ceiling is left out, flagged in planes.json and
+  // counted; walls are not touched.
+  Config tight = config(true);
+  tight.backend.graph.level_view_max_tilt_deg = 1e-6;
+  const std::string out = file("out_tilt_tight");
+  runPipeline(bag(), tight, out);
+  std::ifstream report_file(std::filesystem::path(out) / "report.json");
+  const nlohmann::json report = nlohmann::json::parse(report_file);
+  const int tilted = report["backend"]["association"]["tilted_level_views"].get<int>();
+  std::ifstream planes_file(std::filesystem::path(out) / "planes.json");
+  const nlohmann::json planes = nlohmann::json::parse(planes_file);
+  int level_views = 0, wall_views = 0, walls_flagged = 0;
+  for (const auto& plane : planes["planes"]) {
+    const bool level = std::abs(plane["normal"][2].get<double>()) > std::cos(5.0 * M_PI / 180.0);
+    for (const auto& o : plane["observations"]) {
+      if (level) {
+        ++level_views;
+        EXPECT_TRUE(o["outlier"].get<bool>());
+      } else {
+        ++wall_views;
+        walls_flagged += o["outlier"].get<bool>();
+      }
+    }
+  }
+  EXPECT_GT(level_views, 5);
+  EXPECT_EQ(tilted, level_views);
+  EXPECT_GT(wall_views, 5);
+  EXPECT_LT(walls_flagged, wall_views / 4);
+}
+
 TEST_F(BackendTiny, NoSrpKeepsTheOdometry) {
   const std::string out = file("out_nosrp");
   const PipelineResult r = runPipeline(bag(), config(false), out);
