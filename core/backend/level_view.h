@@ -16,6 +16,13 @@
 
 namespace storey::backend {
 
+/// True when the normal `n` is within `tolerance_rad` of vertical (up or
+/// down): the floors and ceilings that get the level prior (plane_graph.cpp).
+inline bool isNearlyLevel(const Eigen::Vector3d& n, double tolerance_rad) {
+  const Eigen::Vector3d u = n.normalized();
+  return std::hypot(u.x(), u.y()) < std::sin(tolerance_rad);
+}
+
 /// True when `n_landmark_world` is within `level_tolerance_rad` of vertical
 /// (a floor or ceiling) and the view's normal in the world,
 /// `n_view_world` (the observed normal turned by its keyframe's solved
@@ -25,8 +32,7 @@ inline bool isTiltedLevelView(const Eigen::Vector3d& n_landmark_world,
                               const Eigen::Vector3d& n_view_world, double level_tolerance_rad,
                               double max_tilt_rad) {
   if (max_tilt_rad <= 0.0) return false;
-  const Eigen::Vector3d l = n_landmark_world.normalized();
-  if (std::hypot(l.x(), l.y()) >= std::sin(level_tolerance_rad)) return false;
+  if (!isNearlyLevel(n_landmark_world, level_tolerance_rad)) return false;
   const Eigen::Vector3d v = n_view_world.normalized();
   return std::atan2(std::hypot(v.x(), v.y()), std::abs(v.z())) > max_tilt_rad;
 }

@@ -13,6 +13,7 @@
 
 #include "backend/analytic_factors.h"
 #include "backend/factors.h"
+#include "backend/level_view.h"
 #include "backend/plane_math.h"
 #include "backend/tilt_prior.h"
 #include "common/error.h"
@@ -160,10 +161,10 @@ int PlaneGraph::addLandmark(const PlaneLandmark& landmark) {
   l.d[0] = landmark.d_world;
   const GraphConfig& c = impl_->config;
   if (c.level_prior_sigma > 0.0) {
-    const double tol = std::sin(c.level_tolerance_deg * M_PI / 180.0);
-    if (std::hypot(n.x(), n.y()) < tol) {
+    const double tol_rad = c.level_tolerance_deg * M_PI / 180.0;
+    if (isNearlyLevel(n, tol_rad)) {
       l.prior.reset(LevelPriorFactor::create(true, c.level_prior_sigma));
-    } else if (std::abs(n.z()) < tol) {
+    } else if (std::abs(n.z()) < std::sin(tol_rad)) {
       l.prior.reset(LevelPriorFactor::create(false, c.level_prior_sigma));
     }
   }
