@@ -113,8 +113,9 @@ struct GraphConfig {
   /// Views of a floor or ceiling (a landmark within level_tolerance_deg of
   /// level) whose normal, turned by its keyframe's solved attitude, is
   /// farther than this from vertical leave the end's whole-graph solve:
-  /// mixed fits (backend/level_view.h) [deg, [0, 45)]; 0 = off
-  double level_view_max_tilt_deg = 0.0;
+  /// mixed fits (backend/level_view.h) [deg, [0, 45)]; 0 = off. 0.43 deg
+  /// (7.5 mrad) is about 3 sigma of a view's modelled normal uncertainty.
+  double level_view_max_tilt_deg = 0.43;
 };
 
 /// The back end (SRP constraints, keyframe graph).
