@@ -139,7 +139,15 @@ PcdHeader parseHeader(std::istream& in, const std::string& path, std::vector<int
       throw Error(path + ": PCD field '" + f.name + "' has unsupported TYPE " + types[i] + " SIZE " +
                   std::to_string(sizes[i]));
     }
-    offset += static_cast<std::uint32_t>(sizes[i]) * f.count;
+    // A point of more than 16 MiB is no PCD's (the widest PCL descriptors are a
+    // few kB); the bound also keeps the 32-bit offsets from wrapping.
+    const std::uint64_t end = offset + static_cast<std::uint64_t>(sizes[i]) * f.count;
+    if (end > (std::uint64_t{1} << 24)) {
+      throw Error(path + ": PCD header: a point of " + std::to_string(end) +
+                  " bytes or more (field '" + f.name + "' COUNT " + std::to_string(f.count) +
+                  "); at most 16 MiB a point");
+    }
+    offset = static_cast<std::uint32_t>(end);
     h.fields.push_back(f);
   }
   h.point_step = offset;
@@ -235,20 +243,22 @@ PcdCloud readPcd(const std::string& path) {
   cloud.header = parseHeader(in, path, sizes, types, counts);
   PcdHeader& h = cloud.header;
   // Before allocating: the header's points must fit in what the file holds after
-  // the header (binary: point_step bytes a point; ascii: at least one character a
-  // point; binary_compressed: LZF expands at most about 100 times, 256 allowed),
-  // so a damaged header asks for no absurd memory (nor overflows the product).
+  // the header (binary: point_step bytes a point; binary_compressed: LZF expands
+  // at most about 100 times, 256 allowed; ascii: every value of every point takes
+  // at least one character and a separator, so a 1-point header with COUNT
+  // 100000000 cannot ask for 400 MB from a few bytes), so a damaged header asks
+  // for no absurd memory (nor overflows the product).
   std::error_code ec;
   const std::uint64_t file_size = std::filesystem::file_size(path, ec);
   const std::uint64_t left = !ec && file_size > h.data_offset ? file_size - h.data_offset : 0;
-  const std::uint64_t factor = h.data == "binary"  ? 1
-                               : h.data == "ascii" ? std::max<std::uint64_t>(h.point_step, 1)
-                                                   : 256;
-  const std::uint64_t room =
-      left > std::numeric_limits<std::uint64_t>::max() / factor
-          ? std::numeric_limits<std::uint64_t>::max()
-          : left * factor;
-  if (h.point_step > 0 && h.points > room / h.point_step) {
+  std::uint64_t ascii_values_per_point = 0;
+  for (const auto& f : h.fields) ascii_values_per_point += f.count;
+  const bool ascii_room_exceeded = h.data == "ascii" && ascii_values_per_point > 0 &&
+                                   h.points > (left / 2 + 1) / ascii_values_per_point;
+  const std::uint64_t factor = h.data == "binary_compressed" ? 256 : 1;
+  const std::uint64_t room = h.data == "ascii" ? std::numeric_limits<std::uint64_t>::max()
+                                               : left * factor;  // left < 2^56: no overflow
+  if (ascii_room_exceeded || (h.point_step > 0 && h.points > room / h.point_step)) {
     throw Error(path + ": PCD body truncated at byte " + std::to_string(h.data_offset + left) +
                 ": " + std::to_string(h.points) + " points of " + std::to_string(h.point_step) +
                 " bytes cannot be in the " + std::to_string(left) + " bytes after the header");

@@ -282,6 +282,36 @@ TEST_F(PcdFolder, AsciiValueBeyondItsFieldTypeIsAnError) {
               std::string::npos)
         << e.what();
   }
+  // Found by the fuzz smoke of CI (tests/data/fuzz/pcd): an ascii header with a
+  // huge COUNT asked for 2.4 GB from a few bytes (the ascii bound was one
+  // character a point; here COUNT 4000000 would be 96 MB); every value takes a
+  // character and a separator.
+  std::ofstream(path("f.pcd")) << "VERSION 0.7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\n"
+                                  "COUNT 1 1 4000000\nWIDTH 6\nHEIGHT 1\nPOINTS 6\n"
+                                  "DATA ascii\n1 2 3\n4 5 6\n";
+  try {
+    readPcd(path("f.pcd"));
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("cannot be in the 12 bytes after the header"),
+              std::string::npos)
+        << e.what();
+  }
+  // COUNT 2000000000 of 8-byte values wrapped the 32-bit point step.
+  std::ofstream(path("g.pcd")) << "VERSION 0.7\nFIELDS x y\nSIZE 8 8\nTYPE F F\n"
+                                  "COUNT 1 2000000000\nWIDTH 1\nHEIGHT 1\nPOINTS 1\n"
+                                  "DATA binary\n0123456789ab";
+  try {
+    readPcd(path("g.pcd"));
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("at most 16 MiB a point"), std::string::npos) << e.what();
+  }
+  // An ordinary ascii cloud still reads.
+  std::ofstream(path("h.pcd")) << "VERSION 0.7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\n"
+                                  "COUNT 1 1 1\nWIDTH 2\nHEIGHT 1\nPOINTS 2\n"
+                                  "DATA ascii\n1 2 3\n4 5 6";
+  EXPECT_EQ(readPcd(path("h.pcd")).header.points, 2u);
   // WIDTH -1 wrapped to 2^32 - 1 through stoul; a negative or > 32-bit count is an error.
   for (const char* width : {"-1", "4294967296"}) {
     std::ofstream(path("e.pcd")) << "VERSION 0.7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\n"
