@@ -38,6 +38,8 @@ const char* toString(GateReject reason) {
       return "distance_gate";
     case GateReject::kMahalanobis:
       return "uncertainty_gate";
+    case GateReject::kFaceChange:
+      return "not_the_tracked_face";
     case GateReject::kCount:
       break;
   }
@@ -100,6 +102,14 @@ AssociationResult associate(const std::vector<DetectedPlane>& srps,
       const PlanePrediction& p = predictions[j];
       const double cos_angle = p.n_kf.dot(n_o);
       const double dd = p.d_kf - d_o;
+      // A tracked landmark's newest view, moved here by the odometry, tells
+      // whether the SRP is the same surface far better than the graph's
+      // prediction: beyond track_gate it is another one (a parallel face).
+      if (p.tracked && cos_angle >= cos_gate &&
+          std::abs(p.n_track_kf.dot(srps[i].centroid) - p.d_track_kf) > config.track_gate) {
+        ++result.gate_rejects[static_cast<std::size_t>(GateReject::kFaceChange)];
+        continue;
+      }
       // Only a confirmed landmark keeps a new plane from being made next to it:
       // one seen once may be a phantom (an edge-on beam cone, a stair tread),
       // and then it would keep a real surface out of the graph for good.

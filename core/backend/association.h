@@ -24,6 +24,12 @@ struct PlanePrediction {
   Eigen::Vector3d n_kf = Eigen::Vector3d::UnitZ();
   double d_kf = 0.0;     ///< [m]
   int observations = 0;  ///< keyframes that have seen it so far
+  /// Tracked (AssociationConfig::track_distance): the landmark's newest view,
+  /// moved into this keyframe by the odometry. An SRP farther than track_gate
+  /// from it (at the SRP's centroid) is another surface, not this landmark.
+  bool tracked = false;
+  Eigen::Vector3d n_track_kf = Eigen::Vector3d::UnitZ();
+  double d_track_kf = 0.0;  ///< [m]
 };
 
 enum class AssociationOutcome {
@@ -39,7 +45,7 @@ enum class AssociationOutcome {
 const char* toString(AssociationOutcome outcome);
 
 /// Why candidate pairs (SRP, landmark) failed; counted over all pairs.
-enum class GateReject { kFacing, kAngle, kDistance, kMahalanobis, kCount };
+enum class GateReject { kFacing, kAngle, kDistance, kMahalanobis, kFaceChange, kCount };
 const char* toString(GateReject reason);
 
 struct SrpAssociation {

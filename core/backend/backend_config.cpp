@@ -50,6 +50,8 @@ void BackendConfig::validate() const {
   require(a.confirmed_observations >= 1, "association.confirmed_observations", "must be >= 1");
   require(a.max_rms_ratio == 0 || a.max_rms_ratio > 1, "association.max_rms_ratio",
           "must be 0 (off) or above 1");
+  require(a.track_distance >= 0, "association.track_distance", "must be >= 0");
+  require(a.track_gate > 0, "association.track_gate", "must be positive");
   const GraphConfig& g = c.graph;
   require(g.odometry_sigma_translation > 0, "graph.odometry_sigma_translation", "must be positive");
   require(g.odometry_sigma_translation_per_m >= 0, "graph.odometry_sigma_translation_per_m",

@@ -66,6 +66,14 @@ struct AssociationConfig {
   /// near the sensor) and not used: neither matched nor a new plane [> 1; 0 = off]
   /// (docs/method/backend.md, "Rough fits are not used")
   double max_rms_ratio = 0.0;
+  /// A landmark seen within this much path of the keyframe (odometry, metres
+  /// walked) is tracked: its newest view, moved into the keyframe by the
+  /// odometry (exact to millimetres over a few metres, unlike the graph's
+  /// prediction), must agree with the SRP within track_gate, or the SRP is
+  /// another surface (a parallel face a few centimetres off) and not matched
+  /// to it; then it may become a new plane next to it [m, >= 0; 0 = off]
+  double track_distance = 0.0;
+  double track_gate = 0.04;  ///< [m, > 0] (docs/method/backend.md, "Tracked landmarks")
 };
 
 /// The keyframe factor graph.

@@ -44,6 +44,12 @@ struct SrpBackend::Impl {
     double time;
     Pose T_odom_lidar;
     int graph_index;
+    double path;  // the odometry's path length from the first scan [m]
+  };
+  /// A landmark's newest view (AssociationConfig::track_distance).
+  struct NewestView {
+    int keyframe = -1;
+    Plane plane_keyframe;
   };
   struct ObservationRecord {
     int keyframe, plane, graph_index;
@@ -61,6 +67,8 @@ struct SrpBackend::Impl {
   std::vector<Keyframe> kfs;
   std::vector<ObservationRecord> observations;
   std::vector<int> last_seen_kf;         // per landmark
+  std::vector<NewestView> newest_view;   // per landmark
+  double path = 0.0;                     // the odometry's path length so far [m]
   std::vector<int> observation_count;    // per landmark
   std::vector<double> observation_chi2;  // after finish()
   backend::FitNoise fit_noise;           // the run's SRP fit RMS (rough-fit gate)
@@ -122,7 +130,7 @@ struct SrpBackend::Impl {
           last.graph_index, kf_graph, T_a_b,
           backend::odometryEdgeInformation(config.graph, last.T_odom_lidar, T_odom_lidar));
     }
-    kfs.push_back({scan_index, scans.back().time, T_odom_lidar, kf_graph});
+    kfs.push_back({scan_index, scans.back().time, T_odom_lidar, kf_graph, path});
     ++stats.keyframes;
 
     // SRP extraction on the deskewed scan.
@@ -160,9 +168,22 @@ struct SrpBackend::Impl {
     const Eigen::Matrix3d R = T_pred.rotationMatrix();
     for (int j = 0; j < graph.landmarks(); ++j) {
       const backend::PlaneLandmark l = graph.landmark(j);
-      predictions.push_back({j, R.transpose() * l.n_world,
-                             l.d_world - l.n_world.dot(T_pred.translation()),
-                             observation_count[static_cast<std::size_t>(j)]});
+      backend::PlanePrediction p{j, R.transpose() * l.n_world,
+                                 l.d_world - l.n_world.dot(T_pred.translation()),
+                                 observation_count[static_cast<std::size_t>(j)]};
+      const NewestView& v = newest_view[static_cast<std::size_t>(j)];
+      const double track = config.association.track_distance;
+      if (track > 0.0 && v.keyframe >= 0 &&
+          path - kfs[static_cast<std::size_t>(v.keyframe)].path <= track) {
+        // The newest view moved into this keyframe by the odometry alone.
+        const Pose T_kf_view =
+            T_odom_lidar.inverse() * kfs[static_cast<std::size_t>(v.keyframe)].T_odom_lidar;
+        const Plane tracked = v.plane_keyframe.transformed(T_kf_view);
+        p.tracked = true;
+        p.n_track_kf = tracked.normal();
+        p.d_track_kf = tracked.distance();
+      }
+      predictions.push_back(p);
     }
     const backend::AssociationResult assoc = backend::associate(
         usable, predictions, config.association, R.transpose() * Eigen::Vector3d::UnitZ());
@@ -185,6 +206,7 @@ struct SrpBackend::Impl {
         plane =
             graph.addLandmark({n_world, srp.plane.distance() + n_world.dot(T_pred.translation())});
         last_seen_kf.push_back(kf_index);
+        newest_view.emplace_back();
         observation_count.push_back(0);
       } else {
         continue;
@@ -198,6 +220,7 @@ struct SrpBackend::Impl {
       observations.push_back(
           {kf_index, plane, o, srp.plane, srp.centroid, srp.hull, srp.points, srp.rms, a.chi2});
       last_seen_kf[static_cast<std::size_t>(plane)] = kf_index;
+      newest_view[static_cast<std::size_t>(plane)] = {kf_index, srp.plane};
       ++observation_count[static_cast<std::size_t>(plane)];
     }
     stats.ms_association.push_back(msSince(t));
@@ -377,6 +400,8 @@ BackendDecision SrpBackend::addScan(double time, const Pose& T_odom_lidar,
   m.q_world_odom = q_world_odom;
   if (m.scans.empty()) m.T_world_odom = Pose(q_world_odom, Eigen::Vector3d::Zero());
   const Pose T_world_lidar = m.T_world_odom * T_odom_lidar;
+  if (!m.scans.empty())
+    m.path += (T_odom_lidar.translation() - m.scans.back().T_odom_lidar.translation()).norm();
   m.scans.push_back({time, T_odom_lidar});
   ++m.stats.scans;
   m.last_T_world_lidar = T_world_lidar;

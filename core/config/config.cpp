@@ -141,6 +141,8 @@ void visitBackend(V& v, BackendConfig& c) {
     a.field("new_plane_separation", x.new_plane_separation);
     a.field("confirmed_observations", x.confirmed_observations);
     a.field("max_rms_ratio", x.max_rms_ratio);
+    a.field("track_distance", x.track_distance);
+    a.field("track_gate", x.track_gate);
   });
   v.section("graph", [&](auto& g) {
     GraphConfig& x = c.graph;

@@ -12,6 +12,7 @@ namespace {
 DetectedPlane srp(const Eigen::Vector3d& n, double d, int points = 2000) {
   DetectedPlane p;
   p.plane = Plane(n, d);
+  p.centroid = n.normalized() * d;  // the foot of the sensor on the plane
   p.points = points;
   p.covariance = Eigen::Vector3d(1e-6, 1e-6, 1e-5).asDiagonal();
   return p;
@@ -151,6 +152,39 @@ TEST(Association, TiltIsKnownBetterThanYaw) {
       associate(srps_rolled, map_rolled, gravity, R_kf_rolled * Eigen::Vector3d::UnitZ());
   EXPECT_EQ(rolled.srps[0].candidates, 0);
   EXPECT_EQ(rolled.srps[1].outcome, AssociationOutcome::kMatched);
+}
+
+TEST(Association, ATrackedLandmarkIsNotMatchedToAParallelFaceBeside) {
+  // A floor landmark the graph predicts 1.30 m under the sensor; an SRP 6 cm
+  // lower (a slab's step, a landing beside a flight): within every gate of the
+  // prediction, so without tracking it is matched.
+  const Eigen::Vector3d down(0, 0, -1);
+  const DetectedPlane lower = srp(down, 1.36);
+  const PlanePrediction untracked = predicted(0, down, 1.30);
+  AssociationResult r = associate({lower}, {untracked}, AssociationConfig{});
+  EXPECT_EQ(r.srps[0].outcome, AssociationOutcome::kMatched);
+  // Tracked: its newest view, moved here by the odometry, is also at 1.30 m, so
+  // the SRP is another surface: not this landmark, and free to be a new plane.
+  PlanePrediction tracked = untracked;
+  tracked.tracked = true;
+  tracked.n_track_kf = down;
+  tracked.d_track_kf = 1.30;
+  r = associate({lower}, {tracked}, AssociationConfig{});
+  EXPECT_EQ(r.srps[0].outcome, AssociationOutcome::kNewPlane);
+  EXPECT_EQ(r.gate_rejects[static_cast<std::size_t>(GateReject::kFaceChange)], 1);
+  EXPECT_STREQ(toString(GateReject::kFaceChange), "not_the_tracked_face");
+  // The graph's prediction is 5 cm off (drift) but the newest view agrees with
+  // the SRP: matched, as the odometry knows where the surface went.
+  tracked.d_track_kf = 1.35;
+  r = associate({lower}, {tracked}, AssociationConfig{});
+  EXPECT_EQ(r.srps[0].outcome, AssociationOutcome::kMatched);
+  EXPECT_EQ(r.srps[0].landmark, 0);
+  // The gate is the configuration's.
+  tracked.d_track_kf = 1.30;
+  AssociationConfig wide;
+  wide.track_gate = 0.08;
+  r = associate({lower}, {tracked}, wide);
+  EXPECT_EQ(r.srps[0].outcome, AssociationOutcome::kMatched);
 }
 
 }  // namespace

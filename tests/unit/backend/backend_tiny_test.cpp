@@ -149,8 +149,10 @@ TEST_F(BackendTiny, RoughFitsTakeNoPartInTheAssociation) {
 
 TEST_F(BackendTiny, TiltedViewsOfLevelSurfacesLeaveTheFinalSolve) {
   // A gate no view of a floor exceeds changes nothing: the same trajectory
-  // as with the gate off (the default).
-  const PipelineResult off = runPipeline(bag(), config(true), file("out_tilt_off"));
+  // as with the gate off.
+  Config no_gate = config(true);
+  no_gate.backend.graph.level_view_max_tilt_deg = 0.0;
+  const PipelineResult off = runPipeline(bag(), no_gate, file("out_tilt_off"));
   Config wide = config(true);
   wide.backend.graph.level_view_max_tilt_deg = 30.0;
   const std::string out_wide = file("out_tilt_wide");
@@ -190,6 +192,47 @@ TEST_F(BackendTiny, TiltedViewsOfLevelSurfacesLeaveTheFinalSolve) {
   EXPECT_EQ(tilted, level_views);
   EXPECT_GT(wall_views, 5);
   EXPECT_LT(walls_flagged, wall_views / 4);
+}
+
+TEST_F(BackendTiny, TrackedLandmarksKeepTheirFace) {
+  // Tracking with a gate wider than the building changes nothing: the same
+  // trajectory as without tracking (the default).
+  const PipelineResult untracked = runPipeline(bag(), config(true), file("out_untracked"));
+  Config wide = config(true);
+  wide.backend.association.track_distance = 1000.0;
+  wide.backend.association.track_gate = 100.0;
+  const PipelineResult r_wide = runPipeline(bag(), wide, file("out_track_wide"));
+  ASSERT_EQ(r_wide.trajectory.size(), untracked.trajectory.size());
+  for (std::size_t i = 0; i < untracked.trajectory.size(); ++i) {
+    ASSERT_EQ(r_wide.trajectory[i].pose.translation(), untracked.trajectory[i].pose.translation())
+        << i;
+  }
+  // A gate no re-observation meets (0.1 mm: the fits' noise is millimetres):
+  // the odometry-moved newest views turn candidates away, counted; every SRP
+  // still has exactly one outcome.
+  Config tight = config(true);
+  tight.backend.association.track_distance = 1000.0;
+  tight.backend.association.track_gate = 1e-4;
+  const std::string out = file("out_track_tight");
+  runPipeline(bag(), tight, out);
+  std::ifstream in(std::filesystem::path(out) / "report.json");
+  const nlohmann::json report = nlohmann::json::parse(in);
+  const nlohmann::json& association = report.at("backend").at("association");
+  EXPECT_GT(association.at("rejected_pairs_by_gate").at("not_the_tracked_face").get<int>(), 10);
+  int outcomes = 0;
+  for (const auto& [name, count] : association.at("outcomes").items()) outcomes += count.get<int>();
+  EXPECT_EQ(outcomes, report.at("backend").at("srps").get<int>());
+  std::ifstream untracked_in(std::filesystem::path(file("out_untracked")) / "report.json");
+  const nlohmann::json untracked_report = nlohmann::json::parse(untracked_in);
+  EXPECT_EQ(untracked_report.at("backend")
+                .at("association")
+                .at("rejected_pairs_by_gate")
+                .at("not_the_tracked_face")
+                .get<int>(),
+            0);
+  EXPECT_GT(
+      association.at("outcomes").at("new_plane").get<int>(),
+      untracked_report.at("backend").at("association").at("outcomes").at("new_plane").get<int>());
 }
 
 TEST_F(BackendTiny, NoSrpKeepsTheOdometry) {
