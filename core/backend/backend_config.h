@@ -71,7 +71,8 @@ struct AssociationConfig {
   /// odometry (exact to millimetres over a few metres, unlike the graph's
   /// prediction), must agree with the SRP within track_gate, or the SRP is
   /// another surface (a parallel face a few centimetres off) and not matched
-  /// to it; then it may become a new plane next to it [m, >= 0; 0 = off]
+  /// to it; then it may become a new plane next to it [m, >= 0; 0 = off;
+  /// worse on the development seeds at 5 m: docs/benchmarks.md, session 29]
   double track_distance = 0.0;
   double track_gate = 0.04;  ///< [m, > 0] (docs/method/backend.md, "Tracked landmarks")
 };
