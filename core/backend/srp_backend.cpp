@@ -46,11 +46,6 @@ struct SrpBackend::Impl {
     int graph_index;
     double path;  // the odometry's path length from the first scan [m]
   };
-  /// A landmark's newest view (AssociationConfig::track_distance).
-  struct NewestView {
-    int keyframe = -1;
-    Plane plane_keyframe;
-  };
   struct ObservationRecord {
     int keyframe, plane, graph_index;
     Plane plane_keyframe;               // as observed (Hesse form)
@@ -67,7 +62,7 @@ struct SrpBackend::Impl {
   std::vector<Keyframe> kfs;
   std::vector<ObservationRecord> observations;
   std::vector<int> last_seen_kf;         // per landmark
-  std::vector<NewestView> newest_view;   // per landmark
+  std::vector<Plane> newest_view;        // per landmark, in its keyframe last_seen_kf
   double path = 0.0;                     // the odometry's path length so far [m]
   std::vector<int> observation_count;    // per landmark
   std::vector<double> observation_chi2;  // after finish()
@@ -171,14 +166,14 @@ struct SrpBackend::Impl {
       backend::PlanePrediction p{j, R.transpose() * l.n_world,
                                  l.d_world - l.n_world.dot(T_pred.translation()),
                                  observation_count[static_cast<std::size_t>(j)]};
-      const NewestView& v = newest_view[static_cast<std::size_t>(j)];
       const double track = config.association.track_distance;
-      if (track > 0.0 && v.keyframe >= 0 &&
-          path - kfs[static_cast<std::size_t>(v.keyframe)].path <= track) {
+      const Keyframe* seen =
+          track > 0.0 ? &kfs[static_cast<std::size_t>(last_seen_kf[static_cast<std::size_t>(j)])]
+                      : nullptr;
+      if (seen && path - seen->path <= track) {
         // The newest view moved into this keyframe by the odometry alone.
-        const Pose T_kf_view =
-            T_odom_lidar.inverse() * kfs[static_cast<std::size_t>(v.keyframe)].T_odom_lidar;
-        const Plane tracked = v.plane_keyframe.transformed(T_kf_view);
+        const Pose T_kf_view = T_odom_lidar.inverse() * seen->T_odom_lidar;
+        const Plane tracked = newest_view[static_cast<std::size_t>(j)].transformed(T_kf_view);
         p.tracked = true;
         p.n_track_kf = tracked.normal();
         p.d_track_kf = tracked.distance();
@@ -206,7 +201,7 @@ struct SrpBackend::Impl {
         plane =
             graph.addLandmark({n_world, srp.plane.distance() + n_world.dot(T_pred.translation())});
         last_seen_kf.push_back(kf_index);
-        newest_view.emplace_back();
+        newest_view.push_back(srp.plane);
         observation_count.push_back(0);
       } else {
         continue;
@@ -220,7 +215,7 @@ struct SrpBackend::Impl {
       observations.push_back(
           {kf_index, plane, o, srp.plane, srp.centroid, srp.hull, srp.points, srp.rms, a.chi2});
       last_seen_kf[static_cast<std::size_t>(plane)] = kf_index;
-      newest_view[static_cast<std::size_t>(plane)] = {kf_index, srp.plane};
+      newest_view[static_cast<std::size_t>(plane)] = srp.plane;
       ++observation_count[static_cast<std::size_t>(plane)];
     }
     stats.ms_association.push_back(msSince(t));

@@ -251,14 +251,13 @@ PcdCloud readPcd(const std::string& path) {
   std::error_code ec;
   const std::uint64_t file_size = std::filesystem::file_size(path, ec);
   const std::uint64_t left = !ec && file_size > h.data_offset ? file_size - h.data_offset : 0;
-  std::uint64_t ascii_values_per_point = 0;
-  for (const auto& f : h.fields) ascii_values_per_point += f.count;
-  const bool ascii_room_exceeded = h.data == "ascii" && ascii_values_per_point > 0 &&
-                                   h.points > (left / 2 + 1) / ascii_values_per_point;
-  const std::uint64_t factor = h.data == "binary_compressed" ? 256 : 1;
-  const std::uint64_t room = h.data == "ascii" ? std::numeric_limits<std::uint64_t>::max()
-                                               : left * factor;  // left < 2^56: no overflow
-  if (ascii_room_exceeded || (h.point_step > 0 && h.points > room / h.point_step)) {
+  std::uint64_t values_per_point = 0;
+  for (const auto& f : h.fields) values_per_point += f.count;
+  const std::uint64_t factor = h.data == "binary_compressed" ? 256 : 1;  // left < 2^56: no overflow
+  const std::uint64_t max_points =
+      h.data == "ascii" ? (left / 2 + 1) / std::max<std::uint64_t>(values_per_point, 1)
+                        : left * factor / std::max<std::uint64_t>(h.point_step, 1);
+  if (h.points > max_points) {
     throw Error(path + ": PCD body truncated at byte " + std::to_string(h.data_offset + left) +
                 ": " + std::to_string(h.points) + " points of " + std::to_string(h.point_step) +
                 " bytes cannot be in the " + std::to_string(left) + " bytes after the header");
