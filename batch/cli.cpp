@@ -205,6 +205,19 @@ int main(int argc, char** argv) {
   render_cmd->add_option("--max-points", render.max_points,
                          "map points drawn at most (uniform subsample; default 2000000)");
 
+  StoreysOptions storeys;
+  auto* storeys_cmd = app.add_subcommand(
+      "storeys",
+      "split a finished run's map into storeys again (map.ply and keyframes.tum of `storey run`), "
+      "e.g. with other storeys: settings, without mapping the log again");
+  storeys_cmd->add_option("RUN_DIR", storeys.run_dir, "output folder of storey run")->required();
+  storeys_cmd
+      ->add_option("-o,--out", storeys.out_dir,
+                   "output folder: map files, storeys/ and storeys.json (not RUN_DIR)")
+      ->required();
+  storeys_cmd->add_option("-c,--config", storeys.config_path,
+                          "configuration file (YAML); its storeys: section is used");
+
   BenchOptions bench;
   auto* bench_cmd = app.add_subcommand(
       "bench",
@@ -307,6 +320,7 @@ int main(int argc, char** argv) {
     }
     if (*eval_cmd) return runEval(eval);
     if (*render_cmd) return runRender(render);
+    if (*storeys_cmd) return runStoreys(storeys);
     if (*bench_cmd) return runBench(bench);
     if (*bias_cmd) return runRegistrationBias(bias);
     if (*batch_cmd) return runBatch(batch);

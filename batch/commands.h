@@ -132,11 +132,18 @@ struct RenderOptions {
   std::optional<int> max_points;     ///< --max-points: map points drawn at most
 };
 
+struct StoreysOptions {
+  std::string run_dir;      ///< output folder of storey run (map.ply, keyframes.tum)
+  std::string out_dir;      ///< -o: where the new split goes (not the run folder)
+  std::string config_path;  ///< -c/--config: its storeys: section is used
+};
+
 int runRun(const RunOptions& options);
 int runInfo(const InfoOptions& options);
 int runSimulate(const SimulateOptions& options);
 int runEval(const EvalOptions& options);
 int runRender(const RenderOptions& options);
+int runStoreys(const StoreysOptions& options);
 int runBench(const BenchOptions& options);
 int runRegistrationBias(const RegistrationBiasOptions& options);
 int runBatch(const BatchOptions& options);

@@ -334,6 +334,36 @@ PlyPoints readPlyPoints(const std::string& path) {
   return points;
 }
 
+PlyVertexColumns readPlyVertexColumns(const std::string& path,
+                                      const std::vector<std::string>& names) {
+  std::ifstream in = openPly(path);
+  const Header header = readHeader(in, path);
+  const VertexProperties v = vertexProperties(header, path);
+  const Element& vertex = *header.find("vertex");
+  std::vector<std::size_t> properties;
+  for (const std::string& name : names) {
+    const int k = vertex.find(name);
+    if (k < 0) throw Error(path + ": PLY element 'vertex' has no property '" + name + "'");
+    if (vertex.properties[static_cast<std::size_t>(k)].is_list)
+      throw Error(path + ": PLY vertex property '" + name + "' is a list, expected a scalar");
+    properties.push_back(static_cast<std::size_t>(k));
+  }
+  PlyVertexColumns out;
+  const std::size_t n = reservableRecords(in, header, vertex);
+  out.positions.reserve(n);
+  out.columns.resize(names.size());
+  for (std::vector<double>& column : out.columns) column.reserve(n);
+  readBody(in, header, path,
+           [&](const Element& element, std::size_t, const std::vector<double>& s,
+               const std::vector<std::vector<double>>&) {
+             if (element.name != "vertex") return;
+             out.positions.emplace_back(s[v.x], s[v.y], s[v.z]);
+             for (std::size_t c = 0; c < properties.size(); ++c)
+               out.columns[c].push_back(s[properties[c]]);
+           });
+  return out;
+}
+
 PlyMesh readPlyMesh(const std::string& path, bool returning_only) {
   std::ifstream in = openPly(path);
   const Header header = readHeader(in, path);

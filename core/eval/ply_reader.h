@@ -35,4 +35,15 @@ PlyMesh readPlyMesh(const std::string& path, bool returning_only = true);
 /// Reads the vertices of a PLY file as points (faces, if any, are ignored).
 PlyPoints readPlyPoints(const std::string& path);
 
+/// Every vertex of a PLY file in file order (non-finite ones too) with the
+/// named scalar vertex properties, one column per name in the given order.
+struct PlyVertexColumns {
+  std::vector<Eigen::Vector3d> positions;
+  std::vector<std::vector<double>> columns;
+};
+/// Throws storey::Error naming the file and the property when one of `names`
+/// is missing or a list.
+PlyVertexColumns readPlyVertexColumns(const std::string& path,
+                                      const std::vector<std::string>& names);
+
 }  // namespace storey::eval

@@ -31,12 +31,12 @@ Result runStorey(const std::string& args) {
 TEST(Cli, HelpListsEverySubcommand) {
   const Result r = runStorey("--help");
   EXPECT_EQ(r.status, 0) << r.output;
-  for (const char* sub : {"run", "simulate", "info", "eval", "render"})
+  for (const char* sub : {"run", "simulate", "info", "eval", "render", "storeys"})
     EXPECT_NE(r.output.find(sub), std::string::npos) << sub << "\n" << r.output;
 }
 
 TEST(Cli, EachSubcommandHasHelp) {
-  for (const char* sub : {"run", "simulate", "info", "eval", "render"}) {
+  for (const char* sub : {"run", "simulate", "info", "eval", "render", "storeys"}) {
     const Result r = runStorey(std::string(sub) + " --help");
     EXPECT_EQ(r.status, 0) << sub << "\n" << r.output;
     EXPECT_NE(r.output.find("Usage"), std::string::npos) << sub << "\n" << r.output;

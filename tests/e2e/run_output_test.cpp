@@ -163,5 +163,53 @@ TEST_F(RunOutput, SummaryOnStdoutHasTheReportsNumbersAndTheFiles) {
   }
 }
 
+// `storey storeys` on the finished run: with the same settings the same
+// files, byte for byte; another storeys: section changes the split; a map
+// that does not belong to the keyframes, or the run folder as the output, is
+// one line and exit 1 with nothing written.
+TEST_F(RunOutput, StoreysSplitsTheRunsMapAgain) {
+  ASSERT_EQ(run_->exit_code, 0) << run_->err;
+  const std::string scratch = dir_->path().string();
+  const std::string again = dir_->file("again");
+  const test::RunResult same = test::runStorey(
+      "storeys " + test::shellQuoted(out()) + " -o " + test::shellQuoted(again), scratch);
+  ASSERT_EQ(same.exit_code, 0) << same.err;
+  for (const char* f : {"storeys.json", "map.ply", "map.las", "map.pcd", "storeys/storey_00.las",
+                        "storeys/storey_00.ply"})
+    EXPECT_EQ(test::readText(again + "/" + f), test::readText(out() + "/" + f)) << f;
+  EXPECT_NE(same.out.find("1 storeys in "), std::string::npos) << same.out;
+
+  // Floors must be larger than the building: no storey.
+  const std::string config =
+      dir_->write("huge_floors.yaml", "storeys:\n  min_floor_area: 100000\n");
+  const std::string none = dir_->file("none");
+  const test::RunResult other = test::runStorey(
+      "storeys " + test::shellQuoted(out()) + " -o " + test::shellQuoted(none) + " -c " + config,
+      scratch);
+  ASSERT_EQ(other.exit_code, 0) << other.err;
+  EXPECT_NE(other.out.find("0 storeys in "), std::string::npos) << other.out;
+  const nlohmann::json table = nlohmann::json::parse(test::readText(none + "/storeys.json"));
+  EXPECT_TRUE(table["storeys"].empty()) << table.dump();
+
+  const test::RunResult in_place = test::runStorey(
+      "storeys " + test::shellQuoted(out()) + " -o " + test::shellQuoted(out()), scratch);
+  EXPECT_EQ(in_place.exit_code, 1);
+  EXPECT_NE(in_place.err.find("the run folder itself"), std::string::npos) << in_place.err;
+
+  // keyframes.tum of a shorter walk: the map's keyframe labels point past it.
+  const std::string cut = dir_->file("cut");
+  fs::create_directories(cut);
+  fs::copy_file(out() + "/map.ply", cut + "/map.ply");
+  const std::string keyframes = test::readText(out() + "/keyframes.tum");
+  dir_->write("cut/keyframes.tum", keyframes.substr(0, keyframes.find('\n') + 1));  // the first
+  const std::string cut_out = dir_->file("cut_out");
+  const test::RunResult wrong = test::runStorey(
+      "storeys " + test::shellQuoted(cut) + " -o " + test::shellQuoted(cut_out), scratch);
+  EXPECT_EQ(wrong.exit_code, 1);
+  EXPECT_NE(wrong.err.find("map.ply: vertex "), std::string::npos) << wrong.err;
+  EXPECT_NE(wrong.err.find("is not one of keyframes.tum's"), std::string::npos) << wrong.err;
+  EXPECT_FALSE(fs::exists(cut_out));
+}
+
 }  // namespace
 }  // namespace storey
