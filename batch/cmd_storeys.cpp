@@ -89,8 +89,15 @@ int runStoreys(const StoreysOptions& options) {
                                                        bar.callback(), config.map.export_threads);
   bar.done();
 
+  const StoreySegmentationStats& stats = segmentation.stats;
+  char counts[200];
+  std::snprintf(counts, sizeof(counts),
+                " (%zu floor slabs; %zu stair flight ends, %zu of them on a floor; the sensor "
+                "%.2f m above the floor)\n",
+                stats.floor_slabs, stats.flight_ends, stats.flight_ends_on_floor,
+                stats.usual_sensor_height);
   std::cout << "storey storeys: " << segmentation.storeys.size() << " storeys in " << map.size()
-            << " map points (" << segmentation.stats.floor_slabs << " floor slabs)\n";
+            << " map points" << counts;
   for (const StoreyInfo& s : segmentation.storeys) {
     char line[160];
     std::snprintf(line, sizeof(line), "  storey %d: floor %.3f m, footprint %.1f m^2, %zu points\n",

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <unordered_map>
 #include <unordered_set>
 
@@ -124,53 +125,78 @@ std::vector<Slab> clusterByElevation(const std::vector<HorizontalRegion>& candid
   return slabs;
 }
 
-/// Flight ends: keyframes where a run of steep keyframe-to-keyframe steps
-/// (slope >= kStairSlope, rising or falling) climbing at least kMinFlightRise
-/// in total starts or ends. A ramp (buildings: <= 1:12) is never steep; the
-/// few steps up to a split level climb less than a flight.
+/// Flights: runs of steep keyframe-to-keyframe steps (slope >= kStairSlope,
+/// rising or falling) climbing at least kMinFlightRise in total. A ramp
+/// (buildings: <= 1:12) is never steep; the few steps up to a split level
+/// climb less than a flight.
 constexpr double kStairSlope = 0.3;       // 17 deg; stairs are 25-40 deg, ramps <= 5 deg
 constexpr double kMinStepRise = 0.05;     // [m] smaller steps are noise, not stairs
 constexpr double kMinFlightRise = 1.0;    // [m] half a storey's flight and more
 constexpr double kArrivalReach = 1.0;     // [m] a floor slab this close (xy) carries a flight end
 constexpr double kMinSensorHeight = 0.2;  // [m] the sensor above the floor it stands on ...
 constexpr double kMaxSensorHeight = 2.5;  // ... at most this
+constexpr double kStandTolerance = 0.25;  // [m] a flight end's floor: this close to one usual
+                                          // sensor height below it (gait, a riser and a half)
 
+/// Whether the step from keyframe k to k + 1 is steep.
+bool steepStep(const std::vector<Eigen::Vector3d>& keyframes, std::size_t k) {
+  const Eigen::Vector3d& a = keyframes[k];
+  const Eigen::Vector3d& b = keyframes[k + 1];
+  if (!a.allFinite() || !b.allFinite()) return false;
+  const double dz = std::abs(b.z() - a.z());
+  return dz >= kMinStepRise && dz >= kStairSlope * (b - a).head<2>().norm();
+}
+
+/// Where the walker stands at each end of every flight: of the flight's end
+/// keyframe and its level neighbour outside the flight (keyframes are about a
+/// metre of path apart, so the end keyframe may still be a riser or two below
+/// the top or above the bottom), the higher at the upper end, the lower at the
+/// lower end.
 std::vector<Eigen::Vector3d> flightEnds(const std::vector<Eigen::Vector3d>& keyframes) {
-  auto steep = [&](std::size_t k) {  // the step from keyframe k to k + 1
-    const Eigen::Vector3d& a = keyframes[k];
-    const Eigen::Vector3d& b = keyframes[k + 1];
-    if (!a.allFinite() || !b.allFinite()) return false;
-    const double dz = std::abs(b.z() - a.z());
-    return dz >= kMinStepRise && dz >= kStairSlope * (b - a).head<2>().norm();
+  auto standing = [&](std::size_t end, std::size_t neighbour, bool upper) {
+    const Eigen::Vector3d& e = keyframes[end];
+    if (neighbour >= keyframes.size() || !keyframes[neighbour].allFinite()) return e;
+    const Eigen::Vector3d& n = keyframes[neighbour];
+    return (upper ? n.z() > e.z() : n.z() < e.z()) ? n : e;
   };
   std::vector<Eigen::Vector3d> ends;
   std::size_t i = 0;
   while (i + 1 < keyframes.size()) {
-    if (!steep(i)) {
+    if (!steepStep(keyframes, i)) {
       ++i;
       continue;
     }
     std::size_t j = i;
-    while (j + 1 < keyframes.size() && steep(j)) ++j;
-    if (std::abs(keyframes[j].z() - keyframes[i].z()) >= kMinFlightRise) {
-      ends.push_back(keyframes[i]);
-      ends.push_back(keyframes[j]);
+    while (j + 1 < keyframes.size() && steepStep(keyframes, j)) ++j;
+    const double climb = keyframes[j].z() - keyframes[i].z();
+    if (std::abs(climb) >= kMinFlightRise) {
+      const std::size_t before = i > 0 ? i - 1 : keyframes.size();  // none: the end itself
+      ends.push_back(standing(i, before, climb < 0.0));
+      ends.push_back(standing(j, j + 1, climb > 0.0));
     }
     i = j;
   }
   return ends;
 }
 
-/// Per floor slab: how many flight ends stand on it (the highest slab with
-/// points within kArrivalReach in xy, kMinSensorHeight-kMaxSensorHeight below
-/// the sensor). Stairs arrive at a storey's main floor.
+/// Per floor slab: how many flight ends stand on it. Stairs arrive at a
+/// storey's main floor. A walker stands one usual sensor height above the
+/// floor (the median over the keyframes off the stairs of the height above
+/// the highest slab right below them); a flight end votes for the slab, among
+/// those with points within kArrivalReach in xy and kMinSensorHeight to
+/// kMaxSensorHeight below the sensor, nearest to that height below it (within
+/// kStandTolerance). The highest such slab would be a split level's wing next
+/// to the landing, or a stair tread at the wing's elevation, wherever the
+/// sensor is carried higher above the floor than the wing's rise.
 std::vector<std::size_t> flightEndVotes(const std::vector<Slab>& slabs,
                                         const std::vector<HorizontalRegion>& candidates,
                                         const std::vector<PlanarRegion>& regions,
                                         const std::vector<Eigen::Vector3d>& points,
-                                        const std::vector<Eigen::Vector3d>& keyframes) {
+                                        const std::vector<Eigen::Vector3d>& keyframes,
+                                        StoreySegmentationStats& stats) {
   std::vector<std::size_t> votes(slabs.size(), 0);
   const std::vector<Eigen::Vector3d> ends = flightEnds(keyframes);
+  stats.flight_ends = ends.size();
   if (ends.empty()) return votes;
   const double cell = 0.5 * kArrivalReach, inv = 1.0 / cell;
   std::vector<std::unordered_set<std::uint64_t>> cells(slabs.size());
@@ -178,19 +204,47 @@ std::vector<std::size_t> flightEndVotes(const std::vector<Slab>& slabs,
     forEachSlabPoint(slabs[s], candidates, regions, [&](std::size_t i) {
       cells[s].insert(cellKey(points[i].x(), points[i].y(), inv));
     });
+  // Slabs with points within `reach` cells (xy) and a sensor height below `sensor`.
+  auto slabsBelow = [&](const Eigen::Vector3d& sensor, int reach) {
+    std::vector<std::size_t> below;
+    for (std::size_t s = 0; s < slabs.size(); ++s) {
+      const double height = sensor.z() - slabs[s].elevation;
+      if (height < kMinSensorHeight || height > kMaxSensorHeight) continue;
+      bool near = false;
+      for (int dx = -reach; dx <= reach && !near; ++dx)
+        for (int dy = -reach; dy <= reach && !near; ++dy)
+          near = cells[s].count(cellKey(sensor.x() + dx * cell, sensor.y() + dy * cell, inv)) > 0;
+      if (near) below.push_back(s);
+    }
+    return below;
+  };
+  std::vector<double> heights;
+  for (std::size_t k = 0; k < keyframes.size(); ++k) {
+    if (!keyframes[k].allFinite()) continue;
+    if ((k > 0 && steepStep(keyframes, k - 1)) ||
+        (k + 1 < keyframes.size() && steepStep(keyframes, k)))
+      continue;
+    double top = -std::numeric_limits<double>::infinity();
+    for (std::size_t s : slabsBelow(keyframes[k], 1)) top = std::max(top, slabs[s].elevation);
+    if (std::isfinite(top)) heights.push_back(keyframes[k].z() - top);
+  }
+  if (heights.empty()) return votes;
+  const double usual = median(std::move(heights));
+  stats.usual_sensor_height = usual;
   for (const Eigen::Vector3d& end : ends) {
     std::size_t best = slabs.size();
-    for (std::size_t s = 0; s < slabs.size(); ++s) {
-      const double below = end.z() - slabs[s].elevation;
-      if (below < kMinSensorHeight || below > kMaxSensorHeight) continue;
-      if (best < slabs.size() && slabs[s].elevation <= slabs[best].elevation) continue;
-      bool near = false;
-      for (int dx = -2; dx <= 2 && !near; ++dx)
-        for (int dy = -2; dy <= 2 && !near; ++dy)
-          near = cells[s].count(cellKey(end.x() + dx * cell, end.y() + dy * cell, inv)) > 0;
-      if (near) best = s;
+    double best_offset = kStandTolerance;
+    for (std::size_t s : slabsBelow(end, 2)) {
+      const double offset = std::abs(end.z() - usual - slabs[s].elevation);
+      if (offset <= best_offset) {
+        best = s;
+        best_offset = offset;
+      }
     }
-    if (best < slabs.size()) ++votes[best];
+    if (best < slabs.size()) {
+      ++votes[best];
+      ++stats.flight_ends_on_floor;
+    }
   }
   return votes;
 }
@@ -289,7 +343,7 @@ StoreySegmentation segmentStoreys(MapCloud& map,
   // two floors (a wing a few steps or a ramp higher, possibly the larger), the
   // storey's floor is the one its stair flights start and end on.
   const std::vector<std::size_t> votes =
-      flightEndVotes(floor_slabs, up, regions, sub.points, keyframe_positions);
+      flightEndVotes(floor_slabs, up, regions, sub.points, keyframe_positions, stats);
   std::sort(by_area.begin(), by_area.end(), [&](std::size_t a, std::size_t b) {
     const bool stairs_a = votes[a] > 0, stairs_b = votes[b] > 0;
     if (stairs_a != stairs_b) return stairs_a;

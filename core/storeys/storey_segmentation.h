@@ -60,6 +60,9 @@ struct StoreySegmentationStats {
   std::size_t slabs_too_small = 0;     ///< rejected: area < min_floor_area
   std::size_t slabs_too_close = 0;     ///< rejected: within min_storey_height of a kept floor
   std::size_t stair_cells = 0;
+  std::size_t flight_ends = 0;           ///< both ends of every stair flight of the keyframes
+  std::size_t flight_ends_on_floor = 0;  ///< of them, standing on a floor slab (a vote)
+  double usual_sensor_height = 0.0;      ///< the sensor above the floor off the flights [m]
   double seconds_normals = 0.0, seconds_regions = 0.0, seconds_labels = 0.0,
          seconds_footprints = 0.0;
 };

@@ -62,7 +62,8 @@ struct Building {
 
   /// `wing`: a split level east of the building on every storey, kWingRise
   /// above the main floor and larger than it, walked before the corridor.
-  explicit Building(bool wing = false) {
+  /// `sensor`: the sensor's height above the floor it stands on.
+  explicit Building(bool wing = false, double sensor = kSensorHeight) {
     for (std::size_t k = 0; k < floors.size(); ++k) {
       current = k;
       const double f = floors[k];
@@ -71,7 +72,7 @@ struct Building {
       if (wing) {
         horizontal(f + kWingRise, kLength, kLength + kWingLength, 0, kWidth, false, +1);
         for (double x = kLength + 1.0; x <= kLength + kWingLength; x += 1.0) {
-          keyframes.push_back({x, 4.0, f + kWingRise + kSensorHeight});
+          keyframes.push_back({x, 4.0, f + kWingRise + sensor});
           keyframe_storey.push_back(k);
         }
       }
@@ -85,7 +86,7 @@ struct Building {
                  +1);  // a low table (1.3 m^2), seen from above
       // Walk along the corridor, then (below the top) up the stairs.
       for (double x = 1.0; x <= 8.0; x += 1.0) {
-        keyframes.push_back({x, 7.2, f + kSensorHeight});
+        keyframes.push_back({x, 7.2, f + sensor});
         keyframe_storey.push_back(k);
       }
       if (k + 1 < floors.size()) {
@@ -97,11 +98,14 @@ struct Building {
             for (double y = kStairY0; y <= kWidth; y += kSpacing) add({x, y, z}, true, +1);
           for (double zz = z - riser; zz <= z; zz += kSpacing)  // riser
             for (double y = kStairY0; y <= kWidth; y += kSpacing) add({x0, y, zz}, true);
-          if (s % 3 == 0) {
-            keyframes.push_back({x0, 7.2, z + kSensorHeight});
+          if (s % 3 == 0 || s + 1 == steps) {  // the last on the top tread
+            keyframes.push_back({x0, 7.2, z + sensor});
             keyframe_storey.push_back(k);
           }
         }
+        // Off the flight onto the landing of the floor above.
+        keyframes.push_back({kStairX1 + 0.3, 7.2, next + sensor});
+        keyframe_storey.push_back(k + 1);
       }
     }
     // Each point is observed by the nearest keyframe of its storey (slabs occlude).
@@ -201,6 +205,23 @@ TEST(StoreySegmentation, SplitLevelFloorIsWhereTheStairsArrive) {
   for (std::size_t k = 0; k < 3; ++k)
     EXPECT_NEAR(by_area.storeys[k].floor_elevation, b.floors[k] + kWingRise, 0.05)
         << "storey " << k;
+}
+
+// The same split level walked with the sensor carried 1.2 m above the floor
+// (hand-held): at the top of each flight the wing next to the landing is
+// 0.75 m below the sensor, as a floor would be under a legged robot. The
+// flight still arrives at the main floor, one usual sensor height below.
+TEST(StoreySegmentation, SplitLevelFloorWithTheSensorHigherThanTheWingsRise) {
+  constexpr double kHandHeld = 1.2;
+  ASSERT_GT(kHandHeld - kWingRise, 0.5);  // the wing would pass for a floor under the sensor
+  Building b(true, kHandHeld);
+  const StoreySegmentation result = segmentStoreys(b.map, b.keyframes, StoreysConfig{});
+  ASSERT_EQ(result.storeys.size(), 3u);
+  for (std::size_t k = 0; k < 3; ++k)
+    EXPECT_NEAR(result.storeys[k].floor_elevation, b.floors[k], 0.05) << "storey " << k;
+  EXPECT_NEAR(result.stats.usual_sensor_height, kHandHeld, 0.03);
+  EXPECT_EQ(result.stats.flight_ends, 4u);  // two flights
+  EXPECT_EQ(result.stats.flight_ends_on_floor, 4u);
 }
 
 TEST(StoreySegmentation, NoFloorGivesNoStoreys) {
