@@ -300,17 +300,22 @@ struct VertexProperties {
   int x = -1, y = -1, z = -1;
 };
 
+/// Index of the scalar vertex property `name` (storey::Error when it is missing or a list).
+std::size_t scalarVertexProperty(const Element& vertex, const std::string& name,
+                                 const std::string& path) {
+  const int k = vertex.find(name);
+  if (k < 0) throw Error(path + ": PLY element 'vertex' has no property '" + name + "'");
+  if (vertex.properties[static_cast<std::size_t>(k)].is_list)
+    throw Error(path + ": PLY vertex property '" + name + "' is a list, expected a scalar");
+  return static_cast<std::size_t>(k);
+}
+
 VertexProperties vertexProperties(const Header& header, const std::string& path) {
   const Element* vertex = header.find("vertex");
   if (vertex == nullptr) throw Error(path + ": PLY file has no 'vertex' element");
-  VertexProperties p{vertex->find("x"), vertex->find("y"), vertex->find("z")};
-  for (const char* name : {"x", "y", "z"}) {
-    const int k = vertex->find(name);
-    if (k < 0) throw Error(path + ": PLY element 'vertex' has no property '" + name + "'");
-    if (vertex->properties[static_cast<std::size_t>(k)].is_list)
-      throw Error(path + ": PLY vertex property '" + name + "' is a list, expected a scalar");
-  }
-  return p;
+  return VertexProperties{static_cast<int>(scalarVertexProperty(*vertex, "x", path)),
+                          static_cast<int>(scalarVertexProperty(*vertex, "y", path)),
+                          static_cast<int>(scalarVertexProperty(*vertex, "z", path))};
 }
 
 }  // namespace
@@ -341,13 +346,8 @@ PlyVertexColumns readPlyVertexColumns(const std::string& path,
   const VertexProperties v = vertexProperties(header, path);
   const Element& vertex = *header.find("vertex");
   std::vector<std::size_t> properties;
-  for (const std::string& name : names) {
-    const int k = vertex.find(name);
-    if (k < 0) throw Error(path + ": PLY element 'vertex' has no property '" + name + "'");
-    if (vertex.properties[static_cast<std::size_t>(k)].is_list)
-      throw Error(path + ": PLY vertex property '" + name + "' is a list, expected a scalar");
-    properties.push_back(static_cast<std::size_t>(k));
-  }
+  for (const std::string& name : names)
+    properties.push_back(scalarVertexProperty(vertex, name, path));
   PlyVertexColumns out;
   const std::size_t n = reservableRecords(in, header, vertex);
   out.positions.reserve(n);
