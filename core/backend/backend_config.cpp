@@ -68,6 +68,8 @@ void BackendConfig::validate() const {
   require(g.odometry_sigma_rotation_per_m_climbed >= 0,
           "graph.odometry_sigma_rotation_per_m_climbed", "must be >= 0");
   require(g.plane_loss_width > 0, "graph.plane_loss_width", "must be positive");
+  require(g.height_span_keyframes >= 0, "graph.height_span_keyframes", "must be >= 0 (0: off)");
+  require(g.height_span_sigma > 0, "graph.height_span_sigma", "must be positive");
   require(g.plane_sigma_rotation >= 0, "graph.plane_sigma_rotation", "must be >= 0");
   require(g.plane_sigma_distance >= 0, "graph.plane_sigma_distance", "must be >= 0");
   require(g.level_prior_sigma >= 0, "graph.level_prior_sigma", "must be >= 0");

@@ -88,6 +88,13 @@ struct GraphConfig {
   double odometry_sigma_translation_per_m_climbed = 0.012;  ///< [m/m, >= 0]
   double odometry_sigma_rotation_per_rad = 0.0003;          ///< [rad/rad, >= 0]
   double odometry_sigma_rotation_per_m_climbed = 0.001;     ///< [rad/m, >= 0]
+  /// Height spans: each keyframe also gets the odometry's height difference
+  /// to the keyframe this many keyframes before it, with a standard deviation
+  /// that does not grow with the span (height_span_sigma): the odometry's
+  /// height error is bounded by its map and gravity, not a random walk over
+  /// its edges [>= 0; 0 = off]
+  int height_span_keyframes = 0;
+  double height_span_sigma = 0.01;  ///< [m, > 0]
   double plane_sigma_rotation =
       0.002;  ///< added to a plane observation's normal std (model error) [rad]
   double plane_sigma_distance = 0.01;  ///< added to its distance std [m]

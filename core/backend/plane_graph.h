@@ -51,6 +51,10 @@ class PlaneGraph {
   /// Odometry constraint T_a_b with its 6x6 information (translation, rotation; frame a).
   void addRelativePose(int a, int b, const Pose& T_a_b,
                        const Eigen::Matrix<double, 6, 6>& information);
+  /// The odometry's height difference between keyframes a < b: `d_odom_ab`
+  /// is p_b - p_a in the odometry's map frame (levelled at every evaluation
+  /// with the latest setOdometryLevelling), `sigma` its standard deviation [m].
+  void addHeightDifference(int a, int b, const Eigen::Vector3d& d_odom_ab, double sigma);
   /// Adds an oriented landmark; a level or plumb prior when config says so.
   int addLandmark(const PlaneLandmark& landmark);
   /// Observation of landmark `plane` by keyframe `kf`: (n_kf, d_kf) oriented like

@@ -125,6 +125,13 @@ struct SrpBackend::Impl {
           last.graph_index, kf_graph, T_a_b,
           backend::odometryEdgeInformation(config.graph, last.T_odom_lidar, T_odom_lidar));
     }
+    const std::size_t span = static_cast<std::size_t>(config.graph.height_span_keyframes);
+    if (span > 0 && kfs.size() >= span) {
+      const Keyframe& first = kfs[kfs.size() - span];
+      graph.addHeightDifference(first.graph_index, kf_graph,
+                                T_odom_lidar.translation() - first.T_odom_lidar.translation(),
+                                config.graph.height_span_sigma);
+    }
     kfs.push_back({scan_index, scans.back().time, T_odom_lidar, kf_graph, path});
     ++stats.keyframes;
 

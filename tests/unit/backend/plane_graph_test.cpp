@@ -288,6 +288,50 @@ TEST(PlaneGraph, HeadingFrameEdgesKeepTheOdometrysHeightsWhenTheGraphLevelsIt) {
   EXPECT_FALSE(GraphConfig{}.heading_frame_edges);  // off by default (docs/method/backend.md)
 }
 
+/// A pull spread over many views: the odometry is exact, and the floor's
+/// views are biased by 1.5 mm more at every keyframe (as a run of views
+/// each a little off, none far enough to be rejected), so each view
+/// alone is within its uncertainty but together they ask the walk to sink
+/// 4.4 cm over 30 keyframes. The edges (1 cm a step, a random walk over
+/// the chain) let it; height spans (the odometry's height difference to
+/// the keyframe five before, 2 mm) keep the odometry's heights.
+TEST(PlaneGraph, HeightSpansKeepTheOdometrysHeightsAgainstASpreadPull) {
+  const Fixture f;
+  auto solve = [&](int span) {
+    GraphConfig config;
+    config.height_span_keyframes = span;
+    config.height_span_sigma = 0.002;
+    PlaneGraph g{config};
+    const Eigen::Matrix3d cov = Eigen::Vector3d(1e-6, 1e-6, 1e-5).asDiagonal();
+    Eigen::Matrix<double, 6, 1> info;
+    info << 1e4, 1e4, 1e4, 1e6, 1e6, 1e6;  // 1 cm, 1 mrad per step
+    for (const PlaneLandmark& l : f.planes) g.addLandmark(l);
+    for (std::size_t i = 0; i < f.truth.size(); ++i) {
+      const int k = g.addKeyframe(f.truth[i]);
+      if (k > 0)
+        g.addRelativePose(k - 1, k, f.truth[i - 1].inverse() * f.truth[i], info.asDiagonal());
+      if (span > 0 && k >= span)
+        g.addHeightDifference(k - span, k,
+                              f.truth[i].translation() - f.truth[i - span].translation(),
+                              config.height_span_sigma);
+      for (int j = 0; j < 4; ++j) {
+        auto [n, d] = f.observe(k, j);
+        if (j == 0) d -= 0.0015 * k;  // the floor seen 1.5 mm nearer at every keyframe
+        g.addObservation(k, j, n, d, cov);
+      }
+    }
+    g.optimise(0, 50);
+    double height = 0.0;
+    for (int i = 0; i < g.keyframes(); ++i)
+      height = std::max(height, std::abs(g.keyframePose(i).translation().z() -
+                                         f.truth[static_cast<std::size_t>(i)].translation().z()));
+    return height;
+  };
+  EXPECT_GT(solve(0), 0.02);
+  EXPECT_LT(solve(5), 0.01);
+  EXPECT_EQ(GraphConfig{}.height_span_keyframes, 0);  // off by default (docs/method/backend.md)
+}
+
 /// level: one band through parts of several treads (their fit RMS fills the
 /// RANSAC band). Each is a new landmark seen once. If such a landmark got the
 /// level prior, its one observation would say "this keyframe is tilted by the
