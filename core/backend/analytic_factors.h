@@ -257,4 +257,34 @@ class HeadingRelativePoseCost : public ceres::SizedCostFunction<6, 4, 3, 4, 3> {
   HeadingRelativePoseFactor f_;
 };
 
+/// The odometry's height difference between keyframes a and b
+/// (graph.height_span_keyframes, docs/method/backend.md "Height spans"):
+///   r = ((t_b - t_a)_z - (q_world_odom d_odom_ab)_z) / sigma,
+/// d_odom_ab = p_b - p_a in the odometry's map frame, levelled with the
+/// odometry's latest levelling (read at every evaluation, like the heading
+/// edges). Jacobians: -1/sigma and 1/sigma on the z of t_a and t_b.
+class HeightDifferenceCost : public ceres::SizedCostFunction<1, 3, 3> {
+ public:
+  HeightDifferenceCost(const Eigen::Vector3d& d_odom_ab, const Eigen::Quaterniond* q_world_odom,
+                       double sigma)
+      : d_(d_odom_ab), q_world_odom_(q_world_odom), w_(1.0 / sigma) {}
+
+  bool Evaluate(double const* const* parameters, double* residual,
+                double** jacobians) const override {
+    residual[0] = w_ * (parameters[1][2] - parameters[0][2] - ((*q_world_odom_) * d_).z());
+    if (!jacobians) return true;
+    for (int k = 0; k < 2; ++k) {
+      if (!jacobians[k]) continue;
+      jacobians[k][0] = jacobians[k][1] = 0.0;
+      jacobians[k][2] = k == 0 ? -w_ : w_;
+    }
+    return true;
+  }
+
+ private:
+  Eigen::Vector3d d_;
+  const Eigen::Quaterniond* q_world_odom_;
+  double w_;
+};
+
 }  // namespace storey::backend

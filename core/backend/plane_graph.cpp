@@ -40,34 +40,6 @@ struct PlaneGraph::Impl {
     int a, b;
     std::unique_ptr<ceres::CostFunction> cost;
   };
-  /// r = ((t_b - t_a)_z - (q_world_odom d_odom_ab)_z) / sigma
-  class HeightDifferenceCost : public ceres::SizedCostFunction<1, 3, 3> {
-   public:
-    HeightDifferenceCost(const Eigen::Vector3d& d_odom_ab, const Eigen::Quaterniond* q_world_odom,
-                         double sigma)
-        : d_(d_odom_ab), q_(q_world_odom), w_(1.0 / sigma) {}
-    bool Evaluate(double const* const* parameters, double* residual,
-                  double** jacobians) const override {
-      residual[0] = w_ * (parameters[1][2] - parameters[0][2] - ((*q_) * d_).z());
-      if (jacobians) {
-        for (int k = 0; k < 2; ++k) {
-          if (!jacobians[k]) continue;
-          jacobians[k][0] = jacobians[k][1] = 0.0;
-          jacobians[k][2] = k == 0 ? -w_ : w_;
-        }
-      }
-      return true;
-    }
-
-   private:
-    Eigen::Vector3d d_;
-    const Eigen::Quaterniond* q_;
-    double w_;
-  };
-  struct Span {
-    int a, b;
-    std::unique_ptr<ceres::CostFunction> cost;
-  };
   struct Observation {
     int kf, plane;
     PlaneObservationFactor factor;
@@ -79,7 +51,7 @@ struct PlaneGraph::Impl {
   std::deque<Keyframe> kfs;  // deque: block addresses stay valid
   std::deque<Landmark> planes;
   std::vector<Edge> edges;
-  std::vector<Span> spans;
+  std::vector<Edge> spans;  ///< height spans (addHeightDifference): cost on t_a, t_b only
   std::vector<Observation> observations;
   ceres::EigenQuaternionManifold quaternion_manifold;
   ceres::SphereManifold<3> sphere_manifold;
@@ -186,7 +158,7 @@ void PlaneGraph::addRelativePose(int a, int b, const Pose& T_a_b,
 void PlaneGraph::addHeightDifference(int a, int b, const Eigen::Vector3d& d_odom_ab, double sigma) {
   if (a < 0 || b <= a || b >= keyframes()) throw Error("PlaneGraph: bad height span keyframes");
   impl_->spans.push_back(
-      {a, b, std::make_unique<Impl::HeightDifferenceCost>(d_odom_ab, &impl_->q_world_odom, sigma)});
+      {a, b, std::make_unique<HeightDifferenceCost>(d_odom_ab, &impl_->q_world_odom, sigma)});
 }
 
 int PlaneGraph::addLandmark(const PlaneLandmark& landmark) {
@@ -266,7 +238,7 @@ GraphSolveStats PlaneGraph::optimise(int window, int max_iterations) {
     problem.AddResidualBlock(e.cost.get(), nullptr, a.q, a.t, b.q, b.t);
     ++stats.residual_blocks;
   }
-  for (const Impl::Span& e : g.spans) {
+  for (const Impl::Edge& e : g.spans) {
     if (e.b < first_free) continue;
     g.addKeyframeBlocks(problem, e.a, e.a < first_free, solve_costs);
     g.addKeyframeBlocks(problem, e.b, e.b < first_free, solve_costs);
