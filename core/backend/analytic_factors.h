@@ -287,4 +287,45 @@ class HeightDifferenceCost : public ceres::SizedCostFunction<1, 3, 3> {
   double w_;
 };
 
+/// The odometry's height difference between keyframes a and b in keyframe
+/// a's frame (graph.height_span_keyframe_frame): the odometry's relative
+/// translation p_a_ab = R_odom_a^T (p_odom_b - p_odom_a), turned by the
+/// graph's own attitude of a, so a slow tilt of the odometry's map frame
+/// (levelled once for the whole log) does not enter the height:
+///   r = ((t_b - t_a)_z - (R(q_a) p_a_ab)_z) / sigma.
+/// Parameters q_a (x, y, z, w), t_a, t_b. With q = (x, y, z, w) and p:
+///   (R p)_z = 2(xz - wy) p_x + 2(yz + wx) p_y + (w^2 - x^2 - y^2 + z^2) p_z.
+class KeyframeHeightDifferenceCost : public ceres::SizedCostFunction<1, 4, 3, 3> {
+ public:
+  KeyframeHeightDifferenceCost(const Eigen::Vector3d& p_a_ab, double sigma)
+      : p_(p_a_ab), w_(1.0 / sigma) {}
+
+  bool Evaluate(double const* const* parameters, double* residual,
+                double** jacobians) const override {
+    const double x = parameters[0][0], y = parameters[0][1], z = parameters[0][2],
+                 w = parameters[0][3];
+    const double px = p_.x(), py = p_.y(), pz = p_.z();
+    const double rz = 2.0 * (x * z - w * y) * px + 2.0 * (y * z + w * x) * py +
+                      (w * w - x * x - y * y + z * z) * pz;
+    residual[0] = w_ * (parameters[2][2] - parameters[1][2] - rz);
+    if (!jacobians) return true;
+    if (jacobians[0]) {
+      jacobians[0][0] = -w_ * 2.0 * (z * px + w * py - x * pz);
+      jacobians[0][1] = -w_ * 2.0 * (-w * px + z * py - y * pz);
+      jacobians[0][2] = -w_ * 2.0 * (x * px + y * py + z * pz);
+      jacobians[0][3] = -w_ * 2.0 * (-y * px + x * py + w * pz);
+    }
+    for (int k = 1; k < 3; ++k) {
+      if (!jacobians[k]) continue;
+      jacobians[k][0] = jacobians[k][1] = 0.0;
+      jacobians[k][2] = k == 1 ? -w_ : w_;
+    }
+    return true;
+  }
+
+ private:
+  Eigen::Vector3d p_;
+  double w_;
+};
+
 }  // namespace storey::backend

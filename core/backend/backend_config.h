@@ -95,6 +95,10 @@ struct GraphConfig {
   /// its edges [>= 0; 0 = off]
   int height_span_keyframes = 0;
   double height_span_sigma = 0.01;  ///< [m, > 0]
+  /// The span's height from the odometry's translation in keyframe a's frame,
+  /// turned by the graph's attitude of a (KeyframeHeightDifferenceCost), not
+  /// from the odometry's map frame levelled once for the log
+  bool height_span_keyframe_frame = false;
   double plane_sigma_rotation =
       0.002;  ///< added to a plane observation's normal std (model error) [rad]
   double plane_sigma_distance = 0.01;  ///< added to its distance std [m]

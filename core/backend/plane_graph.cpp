@@ -155,10 +155,17 @@ void PlaneGraph::addRelativePose(int a, int b, const Pose& T_a_b,
   impl_->kfs[static_cast<std::size_t>(a)].edges.push_back(index);
 }
 
-void PlaneGraph::addHeightDifference(int a, int b, const Eigen::Vector3d& d_odom_ab, double sigma) {
+void PlaneGraph::addHeightDifference(int a, int b, const Eigen::Vector3d& d_odom_ab,
+                                     const Eigen::Quaterniond& q_odom_a, double sigma) {
   if (a < 0 || b <= a || b >= keyframes()) throw Error("PlaneGraph: bad height span keyframes");
-  impl_->spans.push_back(
-      {a, b, std::make_unique<HeightDifferenceCost>(d_odom_ab, &impl_->q_world_odom, sigma)});
+  if (impl_->config.height_span_keyframe_frame) {
+    impl_->spans.push_back(
+        {a, b,
+         std::make_unique<KeyframeHeightDifferenceCost>(q_odom_a.conjugate() * d_odom_ab, sigma)});
+  } else {
+    impl_->spans.push_back(
+        {a, b, std::make_unique<HeightDifferenceCost>(d_odom_ab, &impl_->q_world_odom, sigma)});
+  }
 }
 
 int PlaneGraph::addLandmark(const PlaneLandmark& landmark) {
@@ -242,8 +249,13 @@ GraphSolveStats PlaneGraph::optimise(int window, int max_iterations) {
     if (e.b < first_free) continue;
     g.addKeyframeBlocks(problem, e.a, e.a < first_free, solve_costs);
     g.addKeyframeBlocks(problem, e.b, e.b < first_free, solve_costs);
-    problem.AddResidualBlock(e.cost.get(), nullptr, g.kfs[static_cast<std::size_t>(e.a)].t,
-                             g.kfs[static_cast<std::size_t>(e.b)].t);
+    Impl::Keyframe& a = g.kfs[static_cast<std::size_t>(e.a)];
+    Impl::Keyframe& b = g.kfs[static_cast<std::size_t>(e.b)];
+    if (e.cost->parameter_block_sizes().size() == 3) {  // in keyframe a's frame
+      problem.AddResidualBlock(e.cost.get(), nullptr, a.q, a.t, b.t);
+    } else {
+      problem.AddResidualBlock(e.cost.get(), nullptr, a.t, b.t);
+    }
     ++stats.residual_blocks;
   }
   // Every observation of a free plane by the window's keyframes; of those by

@@ -52,9 +52,13 @@ class PlaneGraph {
   void addRelativePose(int a, int b, const Pose& T_a_b,
                        const Eigen::Matrix<double, 6, 6>& information);
   /// The odometry's height difference between keyframes a < b: `d_odom_ab`
-  /// is p_b - p_a in the odometry's map frame (levelled at every evaluation
-  /// with the latest setOdometryLevelling), `sigma` its standard deviation [m].
-  void addHeightDifference(int a, int b, const Eigen::Vector3d& d_odom_ab, double sigma);
+  /// is p_b - p_a in the odometry's map frame, `q_odom_a` keyframe a's
+  /// attitude there, `sigma` its standard deviation [m]. Levelled at every
+  /// evaluation with the latest setOdometryLevelling, or with
+  /// config.height_span_keyframe_frame turned into a's frame and back by the
+  /// graph's attitude of a.
+  void addHeightDifference(int a, int b, const Eigen::Vector3d& d_odom_ab,
+                           const Eigen::Quaterniond& q_odom_a, double sigma);
   /// Adds an oriented landmark; a level or plumb prior when config says so.
   int addLandmark(const PlaneLandmark& landmark);
   /// Observation of landmark `plane` by keyframe `kf`: (n_kf, d_kf) oriented like

@@ -130,7 +130,7 @@ struct SrpBackend::Impl {
       const Keyframe& first = kfs[kfs.size() - span];
       graph.addHeightDifference(first.graph_index, kf_graph,
                                 T_odom_lidar.translation() - first.T_odom_lidar.translation(),
-                                config.graph.height_span_sigma);
+                                first.T_odom_lidar.rotation(), config.graph.height_span_sigma);
     }
     kfs.push_back({scan_index, scans.back().time, T_odom_lidar, kf_graph, path});
     ++stats.keyframes;

@@ -159,6 +159,7 @@ void visitBackend(V& v, BackendConfig& c) {
     g.field("plane_loss_width", x.plane_loss_width);
     g.field("height_span_keyframes", x.height_span_keyframes);
     g.field("height_span_sigma", x.height_span_sigma);
+    g.field("height_span_keyframe_frame", x.height_span_keyframe_frame);
     g.field("level_prior_sigma", x.level_prior_sigma);
     g.field("level_tolerance_deg", x.level_tolerance_deg);
     g.field("first_tilt_sigma", x.first_tilt_sigma);

@@ -409,5 +409,48 @@ TEST(TiltPriorCost, MeasuresTheTiltAndIgnoresYaw) {
   }
 }
 
+/// The span in keyframe a's frame: its residual is the height change the
+/// graph's attitude of a gives the odometry's relative translation, its
+/// derivatives match numeric ones on the quaternion manifold, and a yaw of a
+/// (about the world's up) does not change it.
+TEST(KeyframeHeightDifferenceCost, HeightOfTheTurnedTranslationAndNumericJacobians) {
+  std::mt19937 rng(31);
+  ceres::EigenQuaternionManifold quaternion;
+  const std::vector<const ceres::Manifold*> manifolds{&quaternion, nullptr, nullptr};
+  for (int trial = 0; trial < 20; ++trial) {
+    const Pose a = randomPose(rng), b = randomPose(rng);
+    const Eigen::Vector3d p_a_ab = 3.0 * Eigen::Vector3d::Random();
+    const double sigma = 0.01;
+    const KeyframeHeightDifferenceCost cost(p_a_ab, sigma);
+    auto residual = [&](const Eigen::Quaterniond& q) {
+      const Eigen::Vector3d &ta = a.translation(), &tb = b.translation();
+      double qv[4] = {q.x(), q.y(), q.z(), q.w()};
+      const double* params[] = {qv, ta.data(), tb.data()};
+      double r = 0.0;
+      EXPECT_TRUE(cost.Evaluate(params, &r, nullptr));
+      return r;
+    };
+    const Eigen::Quaterniond& qa = a.rotation();
+    const double expected = ((b.translation() - a.translation()).z() - (qa * p_a_ab).z()) / sigma;
+    EXPECT_NEAR(residual(qa), expected, 1e-9);
+    const Eigen::Quaterniond yawed(Eigen::AngleAxisd(0.7 + trial, Eigen::Vector3d::UnitZ()));
+    EXPECT_NEAR(residual(yawed * qa), expected, 1e-9);
+
+    double qv[4] = {qa.x(), qa.y(), qa.z(), qa.w()};
+    const double* params[] = {qv, a.translation().data(), b.translation().data()};
+    ceres::GradientChecker checker(&cost, &manifolds, ceres::NumericDiffOptions());
+    ceres::GradientChecker::ProbeResults results;
+    checker.Probe(params, 1e-7, &results);
+    // The derivative along the world's yaw is zero, where a relative
+    // comparison is meaningless: compare against each block's scale.
+    for (std::size_t k = 0; k < 3; ++k) {
+      const Eigen::MatrixXd& analytic = results.local_jacobians.at(static_cast<int>(k));
+      const Eigen::MatrixXd& numeric = results.local_numeric_jacobians.at(static_cast<int>(k));
+      EXPECT_LT((analytic - numeric).cwiseAbs().maxCoeff(), 1e-7 * numeric.cwiseAbs().maxCoeff())
+          << results.error_log;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace storey::backend
