@@ -251,7 +251,7 @@ GraphSolveStats PlaneGraph::optimise(int window, int max_iterations) {
     g.addKeyframeBlocks(problem, e.b, e.b < first_free, solve_costs);
     Impl::Keyframe& a = g.kfs[static_cast<std::size_t>(e.a)];
     Impl::Keyframe& b = g.kfs[static_cast<std::size_t>(e.b)];
-    if (e.cost->parameter_block_sizes().size() == 3) {  // in keyframe a's frame
+    if (g.config.height_span_keyframe_frame) {  // KeyframeHeightDifferenceCost
       problem.AddResidualBlock(e.cost.get(), nullptr, a.q, a.t, b.t);
     } else {
       problem.AddResidualBlock(e.cost.get(), nullptr, a.t, b.t);

@@ -296,6 +296,40 @@ TEST(PlaneGraph, HeadingFrameEdgesKeepTheOdometrysHeightsWhenTheGraphLevelsIt) {
   EXPECT_FALSE(GraphConfig{}.heading_frame_edges);  // off by default (docs/method/backend.md)
 }
 
+/// Solves the fixture's walk with height spans (5 keyframes, 2 mm; 0
+/// keyframes: none) from the odometry `T_odom_kf` (also the start), the
+/// floor's view at keyframe k `floor_bias_per_keyframe * k` nearer; returns
+/// the largest height error.
+double solveWithSpans(const Fixture& f, int span, bool keyframe_frame,
+                      const std::vector<Pose>& T_odom_kf, double floor_bias_per_keyframe) {
+  GraphConfig config;
+  config.height_span_keyframes = span;
+  config.height_span_sigma = 0.002;
+  config.height_span_keyframe_frame = keyframe_frame;
+  PlaneGraph g{config};
+  const Eigen::Matrix3d cov = Eigen::Vector3d(1e-6, 1e-6, 1e-5).asDiagonal();
+  Eigen::Matrix<double, 6, 1> info;
+  info << 1e4, 1e4, 1e4, 1e6, 1e6, 1e6;  // 1 cm, 1 mrad per step
+  for (const PlaneLandmark& l : f.planes) g.addLandmark(l);
+  for (std::size_t i = 0; i < T_odom_kf.size(); ++i) {
+    const int k = g.addKeyframe(T_odom_kf[i]);
+    if (k > 0)
+      g.addRelativePose(k - 1, k, T_odom_kf[i - 1].inverse() * T_odom_kf[i], info.asDiagonal());
+    if (span > 0 && k >= span) {
+      const Pose& T_odom_a = T_odom_kf[i - static_cast<std::size_t>(span)];
+      g.addHeightDifference(k - span, k, T_odom_kf[i].translation() - T_odom_a.translation(),
+                            T_odom_a.rotation(), config.height_span_sigma);
+    }
+    for (int j = 0; j < 4; ++j) {
+      auto [n, d] = f.observe(k, j);
+      if (j == 0) d -= floor_bias_per_keyframe * k;
+      g.addObservation(k, j, n, d, cov);
+    }
+  }
+  g.optimise(0, 50);
+  return maxHeightError(g, f);
+}
+
 /// A pull spread over many views: the odometry is exact, and the floor's
 /// views are biased by 1.5 mm more at every keyframe (as a run of views
 /// each a little off, none far enough to be rejected), so each view
@@ -305,40 +339,13 @@ TEST(PlaneGraph, HeadingFrameEdgesKeepTheOdometrysHeightsWhenTheGraphLevelsIt) {
 /// the keyframe five before, 2 mm) keep the odometry's heights.
 TEST(PlaneGraph, HeightSpansKeepTheOdometrysHeightsAgainstASpreadPull) {
   const Fixture f;
-  auto solve = [&](int span, bool keyframe_frame) {
-    GraphConfig config;
-    config.height_span_keyframes = span;
-    config.height_span_sigma = 0.002;
-    config.height_span_keyframe_frame = keyframe_frame;
-    PlaneGraph g{config};
-    const Eigen::Matrix3d cov = Eigen::Vector3d(1e-6, 1e-6, 1e-5).asDiagonal();
-    Eigen::Matrix<double, 6, 1> info;
-    info << 1e4, 1e4, 1e4, 1e6, 1e6, 1e6;  // 1 cm, 1 mrad per step
-    for (const PlaneLandmark& l : f.planes) g.addLandmark(l);
-    for (std::size_t i = 0; i < f.truth.size(); ++i) {
-      const int k = g.addKeyframe(f.truth[i]);
-      if (k > 0)
-        g.addRelativePose(k - 1, k, f.truth[i - 1].inverse() * f.truth[i], info.asDiagonal());
-      if (span > 0 && k >= span)
-        g.addHeightDifference(k - span, k,
-                              f.truth[i].translation() - f.truth[i - span].translation(),
-                              f.truth[i - span].rotation(), config.height_span_sigma);
-      for (int j = 0; j < 4; ++j) {
-        auto [n, d] = f.observe(k, j);
-        if (j == 0) d -= 0.0015 * k;  // the floor seen 1.5 mm nearer at every keyframe
-        g.addObservation(k, j, n, d, cov);
-      }
-    }
-    g.optimise(0, 50);
-    return maxHeightError(g, f);
-  };
-  const double none = solve(0, false);
+  const double none = solveWithSpans(f, 0, false, f.truth, 0.0015);
   EXPECT_GT(none, 0.02);
-  EXPECT_LT(solve(5, false), 0.01);
+  EXPECT_LT(solveWithSpans(f, 5, false, f.truth, 0.0015), 0.01);
   // In the older keyframe's frame a uniform sink along a straight walk is a
   // pitch of every keyframe, which only the floor's normal resists: the
   // spans hold half of it.
-  EXPECT_LT(solve(5, true), 0.6 * none);
+  EXPECT_LT(solveWithSpans(f, 5, true, f.truth, 0.0015), 0.6 * none);
   EXPECT_EQ(GraphConfig{}.height_span_keyframes, 0);  // off by default (docs/method/backend.md)
 }
 
@@ -352,36 +359,11 @@ TEST(PlaneGraph, HeightSpansKeepTheOdometrysHeightsAgainstASpreadPull) {
 TEST(PlaneGraph, KeyframeFrameSpansFollowTheGraphsLevellingNotTheOdometrys) {
   const Fixture f;
   const Eigen::Quaterniond q_tilt(Eigen::AngleAxisd(-0.004, Eigen::Vector3d::UnitY()));
-  auto solve = [&](bool keyframe_frame) {
-    GraphConfig config;
-    config.height_span_keyframes = 5;
-    config.height_span_sigma = 0.002;
-    config.height_span_keyframe_frame = keyframe_frame;
-    PlaneGraph g{config};
-    const Eigen::Matrix3d cov = Eigen::Vector3d(1e-6, 1e-6, 1e-5).asDiagonal();
-    Eigen::Matrix<double, 6, 1> info;
-    info << 1e4, 1e4, 1e4, 1e6, 1e6, 1e6;
-    for (const PlaneLandmark& l : f.planes) g.addLandmark(l);
-    std::vector<Pose> odometry;  // T_odom_kf: the true walk in a tilted frame
-    for (const Pose& T : f.truth)
-      odometry.emplace_back(q_tilt * T.rotation(), q_tilt * T.translation());
-    for (std::size_t i = 0; i < f.truth.size(); ++i) {
-      const int k = g.addKeyframe(odometry[i]);  // starts where the odometry is
-      if (k > 0)
-        g.addRelativePose(k - 1, k, odometry[i - 1].inverse() * odometry[i], info.asDiagonal());
-      if (k >= 5)
-        g.addHeightDifference(k - 5, k, odometry[i].translation() - odometry[i - 5].translation(),
-                              odometry[i - 5].rotation(), config.height_span_sigma);
-      for (int j = 0; j < 4; ++j) {
-        auto [n, d] = f.observe(k, j);
-        g.addObservation(k, j, n, d, cov);
-      }
-    }
-    g.optimise(0, 50);
-    return maxHeightError(g, f);
-  };
-  EXPECT_GT(solve(false), 0.03);
-  EXPECT_LT(solve(true), 0.015);
+  std::vector<Pose> T_odom_kf;  // the true walk in a tilted frame
+  for (const Pose& T : f.truth)
+    T_odom_kf.emplace_back(q_tilt * T.rotation(), q_tilt * T.translation());
+  EXPECT_GT(solveWithSpans(f, 5, false, T_odom_kf, 0.0), 0.03);
+  EXPECT_LT(solveWithSpans(f, 5, true, T_odom_kf, 0.0), 0.015);
   EXPECT_FALSE(GraphConfig{}.height_span_keyframe_frame);
 }
 
