@@ -238,6 +238,11 @@ int main(int argc, char** argv) {
   bench_cmd->add_flag("--resume", bench.resume,
                       "keep the seeds that an earlier bench into the same folder finished "
                       "(with the same --duration and configuration) and run only the others");
+  bench_cmd
+      ->add_flag("--retry-failed", bench.retry_failed,
+                 "with --resume: run the seeds that failed earlier again (a full disk, a killed "
+                 "process); without it a failed seed is kept as a finished row")
+      ->needs("--resume");
   bench_cmd->add_option("-c,--config", bench.config,
                         "map every seed with this configuration (YAML, as `storey run -c`) "
                         "instead of the defaults");

@@ -4,7 +4,8 @@
 // distribution of each figure. Each step is a child `storey` process (its
 // peak memory measured, its log kept); a failing seed is a row with its error.
 // A finished seed leaves seed.json; `--resume` keeps such seeds (an interrupted
-// or split benchmark goes on where it stopped).
+// or split benchmark goes on where it stopped), `--retry-failed` only those
+// that did not fail.
 
 #include <algorithm>
 #include <atomic>
@@ -100,8 +101,12 @@ int runBench(const BenchOptions& options) {
       BenchRow& row = rows[i];
       row.seed = seeds[i];
       const fs::path dir = fs::path(options.out_dir) / ("seed-" + std::to_string(row.seed));
-      if (options.resume &&
-          readSeedRecord(dir.string(), row.seed, options.max_duration, config_text, row)) {
+      const bool kept = options.resume && readSeedRecord(dir.string(), row.seed,
+                                                         options.max_duration, config_text, row);
+      if (kept && options.retry_failed && !row.error.empty()) {
+        row = BenchRow{};  // failed earlier: run again
+        row.seed = seeds[i];
+      } else if (kept) {
         std::lock_guard<std::mutex> lock(print);
         ++done;
         bar.print("bench: [" + std::to_string(done) + "/" + std::to_string(seeds.size()) +

@@ -95,6 +95,7 @@ struct BenchOptions {
   double max_duration = 0.0;   ///< --duration: simulate only this much of each walk [s]; 0 = all
   bool keep = false;           ///< --keep: keep bags, meshes and maps
   bool resume = false;         ///< --resume: keep the seeds an earlier bench into out_dir finished
+  bool retry_failed = false;   ///< --retry-failed: with --resume, run the failed ones again
   std::string config;  ///< -c: configuration (YAML) every seed is mapped with; "" = defaults
 };
 

@@ -113,6 +113,40 @@ TEST(BenchCli, OneShortSeedEndToEnd) {
             "backend:\n  graph:\n    window_keyframes: 10\n");
 }
 
+TEST(BenchCli, RetryFailedRunsAFailedSeedAgain) {
+  test::TempDir dir;
+  const std::string out = (dir.path() / "bench").string();
+  std::filesystem::create_directories(out + "/seed-18");
+  BenchRow failed;
+  failed.seed = 18;
+  failed.error = "run: storey: error: disk full?";
+  {
+    std::ofstream record(out + "/seed-18/seed.json");
+    record << seedRecordJson(failed, 12.0, "");
+  }
+  const std::string command =
+      "bench --seeds 18 --jobs 1 --duration 12 --resume -o " + test::shellQuoted(out);
+  // --resume alone keeps the failed row: nothing runs.
+  const test::RunResult kept = test::runStorey(command, dir.path().string());
+  ASSERT_EQ(kept.exit_code, 0) << kept.err;
+  EXPECT_NE(kept.err.find("seed 18: FAILED (run: storey: error: disk full?) (kept"),
+            std::string::npos)
+      << kept.err;
+  EXPECT_FALSE(std::filesystem::exists(out + "/seed-18/sim")) << "nothing simulated";
+  // --retry-failed runs it again; the new row replaces the failed one.
+  const test::RunResult retried = test::runStorey(command + " --retry-failed", dir.path().string());
+  ASSERT_EQ(retried.exit_code, 0) << retried.err;
+  EXPECT_EQ(retried.err.find("(kept from an earlier run)"), std::string::npos) << retried.err;
+  EXPECT_NE(retried.err.find("seed 18: 2 storeys"), std::string::npos) << retried.err;
+  std::ifstream in(out + "/benchmark.json");
+  const nlohmann::json row = nlohmann::json::parse(in)["seeds"][0];
+  EXPECT_TRUE(row["error"].is_null()) << row.dump();
+  // Without --resume the flag is refused (CLI11: --retry-failed needs --resume).
+  const test::RunResult alone = test::runStorey(
+      "bench --seeds 18 --retry-failed -o " + test::shellQuoted(out), dir.path().string());
+  EXPECT_NE(alone.exit_code, 0);
+}
+
 TEST(BenchTable, ASeedRecordIsKeptOnlyForItsSeedAndDuration) {
   test::TempDir dir;
   BenchRow row;
