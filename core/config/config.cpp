@@ -48,6 +48,7 @@ void visitOdometry(V& v, OdometryConfig& c) {
   v.field("neighbours", c.neighbours);
   v.field("max_neighbour_distance", c.max_neighbour_distance);
   v.field("plane_fit_tolerance", c.plane_fit_tolerance);
+  v.field("plane_fit_min_inliers", c.plane_fit_min_inliers);
   v.field("line_eigen_ratio", c.line_eigen_ratio);
   v.field("max_point_distance", c.max_point_distance);
   v.field("point_sigma", c.point_sigma);

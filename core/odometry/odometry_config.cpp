@@ -16,6 +16,9 @@ void OdometryConfig::validate() const {
   requireKey(o.max_iterations >= 1, "odometry.max_iterations", "must be >= 1");
   requireKey(o.neighbours >= 3 && o.neighbours <= VoxelMap::kMaxNeighbours, "odometry.neighbours",
              "must be within [3, 16]");
+  requireKey(o.plane_fit_min_inliers == 0 ||
+                 (o.plane_fit_min_inliers >= 3 && o.plane_fit_min_inliers <= o.neighbours),
+             "odometry.plane_fit_min_inliers", "must be 0 (off) or within [3, neighbours]");
   for (const auto& [key, value] :
        {std::pair<const char*, double>{"odometry.max_neighbour_distance", o.max_neighbour_distance},
         {"odometry.plane_fit_tolerance", o.plane_fit_tolerance},

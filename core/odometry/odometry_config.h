@@ -24,6 +24,10 @@ struct OdometryConfig {
                                         ///< (5 fitted false planes across stair steps: odometry.md)
   double max_neighbour_distance = 0.5;  ///< farthest map neighbour of a feature [m]
   double plane_fit_tolerance = 0.05;    ///< every neighbour within this of its plane [m]
+  int plane_fit_min_inliers = 0;        ///< 0: every neighbour must fit the plane; k: the
+                                        ///< neighbourhood's largest face, of at least k
+                                        ///< neighbours (a stair's tread, not tread and riser
+                                        ///< together: fitPlaneLargestFace) [0 or 3..neighbours]
   double line_eigen_ratio = 3.0;  ///< a line's neighbours: largest eigenvalue > ratio x second [-]
   double max_point_distance = 1.0;  ///< matches farther than this from their plane/line
                                     ///< at the predicted pose are rejected [m]

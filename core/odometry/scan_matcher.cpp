@@ -41,13 +41,19 @@ void matchPlanes(const std::vector<Eigen::Vector3d>& planes_imu, std::size_t beg
   for (std::size_t f = begin; f < end; ++f) {
     const Eigen::Vector3d& y = planes_imu[f];
     const Eigen::Vector3d x = T_world_imu * y;
-    const int found =
-        plane_map.nearest(x.cast<float>(), config.neighbours, max_neighbour, neighbours, views);
+    const Eigen::Vector3f x_f = x.cast<float>();
+    const int found = plane_map.nearest(x_f, config.neighbours, max_neighbour, neighbours, views);
     if (found < config.neighbours) {
       reject(MatchReject::kTooFewNeighbours);
       continue;
     }
-    const PlaneFit fit = fitPlane(neighbours, found, config.plane_fit_tolerance);
+    // With plane_fit_min_inliers, the query's own face when the neighbours
+    // span two surfaces (a tread, not tread and riser together).
+    std::uint32_t face = ~0u;
+    const PlaneFit fit = config.plane_fit_min_inliers > 0
+                             ? fitPlaneLargestFace(neighbours, found, config.plane_fit_tolerance,
+                                                   config.plane_fit_min_inliers, &face, &x_f)
+                             : fitPlane(neighbours, found, config.plane_fit_tolerance);
     if (!fit.valid) {
       reject(MatchReject::kNotPlanar);
       continue;
@@ -59,7 +65,8 @@ void matchPlanes(const std::vector<Eigen::Vector3d>& planes_imu, std::size_t beg
     // Side: the summed view directions of the neighbours tell which side of
     // the plane they were seen from (zero when the map keeps no views).
     Eigen::Vector3f view_sum = Eigen::Vector3f::Zero();
-    for (int i = 0; i < found; ++i) view_sum += views[i];
+    for (int i = 0; i < found; ++i)
+      if (face & (1u << i)) view_sum += views[i];
     const double map_side = fit.normal.dot(view_sum.cast<double>());
     if (map_side != 0.0 && map_side * fit.normal.dot(sensor_world - x) < 0.0) {
       reject(MatchReject::kOtherSide);

@@ -262,6 +262,89 @@ PlaneFit fitPlane(const Eigen::Vector3f* points, int count, double max_distance)
   return fit;
 }
 
+PlaneFit fitPlaneLargestFace(const Eigen::Vector3f* points, int count, double max_distance,
+                             int min_inliers, std::uint32_t* inliers,
+                             const Eigen::Vector3f* query) {
+  PlaneFit none;
+  if (count < 3 || count > 32 || count < min_inliers) return none;
+  Eigen::Vector3d p[32];
+  for (int i = 0; i < count; ++i) p[i] = points[i].cast<double>();
+  const auto fitMask = [&](std::uint32_t mask) {
+    Eigen::Vector3f subset[32];
+    int n = 0;
+    for (int i = 0; i < count; ++i)
+      if (mask & (1u << i)) subset[n++] = points[i];
+    return n >= 3 ? fitPlane(subset, n, max_distance) : PlaneFit{};
+  };
+  const std::uint32_t all = count == 32 ? ~0u : (1u << count) - 1u;
+  // Most neighbourhoods are one surface: the least-squares plane of all the
+  // points is then within half the tolerance of every one of them.
+  const PlaneFit whole = fitPlane(points, count, 0.5 * max_distance);
+  if (whole.valid) {
+    if (inliers != nullptr) *inliers = all;
+    return whole;
+  }
+  // The face: of the planes through three points, the one with the most
+  // points within half the tolerance (about the points' own noise; ties: the
+  // smaller sum of their squared distances). Near a tread's edge a plane
+  // sloping across the tread and the riser below it keeps every point within
+  // the whole tolerance, as the least-squares plane did, but not within half.
+  const double tight = 0.5 * max_distance;
+  const auto maskWithin = [&](const Eigen::Vector3d& n, double d, double* sum_squares) {
+    std::uint32_t mask = 0;
+    double sum = 0.0;
+    for (int i = 0; i < count; ++i) {
+      const double e = n.dot(p[i]) - d;
+      if (std::abs(e) <= tight) {
+        mask |= 1u << i;
+        sum += e * e;
+      }
+    }
+    if (sum_squares != nullptr) *sum_squares = sum;
+    return mask;
+  };
+  std::uint32_t best_mask = 0;
+  int best_count = 0;
+  double best_sum = 0.0;
+  for (int a = 0; a < count; ++a)
+    for (int b = a + 1; b < count; ++b)
+      for (int c = b + 1; c < count; ++c) {
+        const Eigen::Vector3d cross = (p[b] - p[a]).cross(p[c] - p[a]);
+        const double norm = cross.norm();
+        if (norm < 1e-6) continue;  // (nearly) collinear: no plane
+        const Eigen::Vector3d n = cross / norm;
+        // The query's own face: not the next tread up or down the flight.
+        if (query != nullptr && std::abs(n.dot(query->cast<double>() - p[a])) > max_distance)
+          continue;
+        double sum = 0.0;
+        const std::uint32_t mask = maskWithin(n, n.dot(p[a]), &sum);
+        const int k = __builtin_popcount(mask);
+        if (k > best_count || (k == best_count && sum < best_sum)) {
+          best_mask = mask;
+          best_count = k;
+          best_sum = sum;
+        }
+      }
+  if (best_count < std::max(min_inliers, 3)) return none;
+  // Refit on the face's points, take its points again, refit.
+  PlaneFit fit = fitMask(best_mask);
+  if (!fit.valid) return none;
+  if (query != nullptr && std::abs(fit.normal.dot(query->cast<double>()) - fit.d) > max_distance)
+    return none;
+  const std::uint32_t again = maskWithin(fit.normal, fit.d, nullptr);
+  if (again != best_mask && __builtin_popcount(again) >= min_inliers) {
+    const PlaneFit refit = fitMask(again);
+    if (refit.valid && (query == nullptr || std::abs(refit.normal.dot(query->cast<double>()) -
+                                                     refit.d) <= max_distance)) {
+      fit = refit;
+      best_mask = again;
+    }
+  }
+  if (__builtin_popcount(best_mask) < min_inliers) return none;
+  if (inliers != nullptr) *inliers = best_mask;
+  return fit;
+}
+
 LineFit fitLine(const Eigen::Vector3f* points, int count, double min_ratio) {
   LineFit fit;
   if (count < 2) return fit;

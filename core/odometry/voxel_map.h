@@ -105,6 +105,23 @@ inline PlaneFit fitPlane(const std::vector<Eigen::Vector3f>& points, double max_
   return fitPlane(points.data(), static_cast<int>(points.size()), max_distance);
 }
 
+/// The plane of the largest face among the points, for neighbourhoods that
+/// may span two surfaces (a stair's tread and riser, a slab's underside and a
+/// flight's soffit), where one least-squares plane through all of them is a
+/// false, slanted plane that can still pass `max_distance`. Points whose
+/// least-squares plane is within half of `max_distance` of each of them are
+/// one surface: that plane, all points. Otherwise, of the planes through
+/// three of the points (with `query`: only those within `max_distance` of
+/// it, so that the face is the query's own and not the next tread's), the
+/// one with the most points within half of `max_distance` (ties: the smaller
+/// sum of their squared distances) is refit by PCA on those, its points
+/// within half of `max_distance` are taken again and refit. `valid` when at
+/// least `min_inliers` points remain and fitPlane accepts them; `inliers`
+/// gets their mask (bit i: point i).
+PlaneFit fitPlaneLargestFace(const Eigen::Vector3f* points, int count, double max_distance,
+                             int min_inliers, std::uint32_t* inliers = nullptr,
+                             const Eigen::Vector3f* query = nullptr);
+
 /// Line through `point` along unit `direction` fitted by PCA; `valid` only when
 /// the points are clearly elongated (largest eigenvalue > `min_ratio` x the second).
 struct LineFit {

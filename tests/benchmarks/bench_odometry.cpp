@@ -52,12 +52,16 @@ const Log& benchmarkLog() {
   return log;
 }
 
+/// Argument: odometry.plane_fit_min_inliers (0: the default, every neighbour
+/// on the plane; 5: the neighbours' largest face of at least 5).
 void BM_OdometryPerScan(benchmark::State& state) {
   const Log& log = benchmarkLog();
+  OdometryConfig config = log.config.odometry;
+  config.plane_fit_min_inliers = static_cast<int>(state.range(0));
   std::vector<double> total_ms;
   for (auto _ : state) {
     std::int64_t emitted = 0;
-    LidarInertialOdometry odometry(log.config.odometry, log.config.sensor);
+    LidarInertialOdometry odometry(config, log.config.sensor);
     OdometryResult r;
     auto drain = [&] {
       while (odometry.nextResult(r)) {
@@ -85,7 +89,7 @@ void BM_OdometryPerScan(benchmark::State& state) {
   std::nth_element(total_ms.begin(), total_ms.begin() + total_ms.size() / 2, total_ms.end());
   state.counters["median_scan_ms"] = total_ms.empty() ? 0.0 : total_ms[total_ms.size() / 2];
 }
-BENCHMARK(BM_OdometryPerScan)->Unit(benchmark::kSecond)->Iterations(1);
+BENCHMARK(BM_OdometryPerScan)->Arg(0)->Arg(5)->Unit(benchmark::kSecond)->Iterations(1);
 
 }  // namespace
 }  // namespace storey

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <random>
 
 namespace storey {
@@ -73,6 +74,44 @@ TEST(VoxelMap, PlaneAndLineFits) {
   ASSERT_TRUE(fit.valid);
   EXPECT_NEAR(std::abs(fit.direction.z()), 1.0, 1e-4);
   EXPECT_FALSE(fitLine({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}}, 3.0).valid);
+}
+
+TEST(VoxelMap, LargestFaceFitsTheTreadNotTheStepsSlope) {
+  // Eight neighbours of a tread point near a stair's nosing: five on the
+  // tread (z = 0), three on the riser below it (y = 0). One plane through
+  // all eight passes the 5 cm tolerance but slopes 27 deg along the flight.
+  const std::vector<Eigen::Vector3f> step = {
+      {0.0f, 0.05f, 0.0f},  {0.1f, 0.12f, 0.0f},  {-0.1f, 0.16f, 0.0f},   {0.2f, 0.22f, 0.0f},
+      {-0.2f, 0.09f, 0.0f}, {0.1f, 0.0f, -0.05f}, {-0.15f, 0.0f, -0.12f}, {0.2f, 0.0f, -0.09f}};
+  const PlaneFit slope = fitPlane(step, 0.05);
+  ASSERT_TRUE(slope.valid);
+  EXPECT_LT(std::abs(slope.normal.z()), std::cos(15.0 * M_PI / 180.0));
+
+  std::uint32_t face = 0;
+  const PlaneFit tread = fitPlaneLargestFace(step.data(), 8, 0.05, 5, &face);
+  ASSERT_TRUE(tread.valid);
+  EXPECT_GT(std::abs(tread.normal.z()), std::cos(3.0 * M_PI / 180.0));
+  EXPECT_EQ(face, 0x1Fu) << "the tread's points, not the riser's";
+  EXPECT_FALSE(fitPlaneLargestFace(step.data(), 8, 0.05, 7).valid) << "no face of 7";
+  // A query on the tread gets the tread; one a riser's height above it (on
+  // the next tread up, whose points are not among these) gets no face.
+  const Eigen::Vector3f on_tread(0.05f, 0.1f, 0.01f), next_tread(0.05f, 0.1f, 0.17f);
+  EXPECT_TRUE(fitPlaneLargestFace(step.data(), 8, 0.05, 5, nullptr, &on_tread).valid);
+  EXPECT_FALSE(fitPlaneLargestFace(step.data(), 8, 0.05, 5, nullptr, &next_tread).valid);
+
+  // One surface with the points' noise (up to 2 cm): every point is on the
+  // face and the plane is fitPlane's plane of them all.
+  const float noise[8] = {0.012f, -0.02f, 0.015f, -0.005f, 0.02f, -0.016f, 0.0f, -0.011f};
+  std::vector<Eigen::Vector3f> wall;
+  for (int i = 0; i < 8; ++i)
+    wall.emplace_back(2.0f + noise[i], 0.1f * i, 0.07f * static_cast<float>((i * 5) % 7));
+  const PlaneFit all = fitPlane(wall, 0.05);
+  const PlaneFit largest = fitPlaneLargestFace(wall.data(), 8, 0.05, 5, &face);
+  ASSERT_TRUE(all.valid);
+  ASSERT_TRUE(largest.valid);
+  EXPECT_EQ(face, 0xFFu);
+  EXPECT_NEAR(largest.normal.dot(all.normal), 1.0, 1e-12);
+  EXPECT_NEAR(largest.d, all.d, 1e-12);
 }
 
 TEST(VoxelMap, KeepsViewDirectionsTowardsTheSensor) {
@@ -158,6 +197,38 @@ TEST(ScanMatcher, RejectsPointsSeenFromTheOtherSideOfASlab) {
   // A map without view directions cannot tell (the old behaviour).
   m = matchFeatures(top_point, {}, Pose(), without_views, no_edges, config, sensor_above);
   EXPECT_EQ(m.planes.size(), 1u);
+}
+
+TEST(ScanMatcher, TheLargestFaceMatchesATreadPointToItsTread) {
+  // The map holds a tread (z = 0) and the riser below its nosing (y = 0);
+  // the fit of all eight slopes along the flight (VoxelMap.LargestFace...).
+  OdometryConfig config;
+  config.local_map.min_point_spacing = 0.0;
+  VoxelMap map(config.local_map);
+  map.insert({{0.0f, 0.05f, 0.0f},
+              {0.1f, 0.12f, 0.0f},
+              {-0.1f, 0.16f, 0.0f},
+              {0.2f, 0.22f, 0.0f},
+              {-0.2f, 0.09f, 0.0f},
+              {0.1f, 0.0f, -0.05f},
+              {-0.15f, 0.0f, -0.12f},
+              {0.2f, 0.0f, -0.09f}});
+  const VoxelMap no_edges(config.local_map);
+  const std::vector<Eigen::Vector3d> tread_point{{0.05, 0.1, 0.01}};
+  const Eigen::Vector3d sensor(0.0, 1.0, 1.2);
+  MatchResult m = matchFeatures(tread_point, {}, Pose(), map, no_edges, config, sensor);
+  ASSERT_EQ(m.planes.size(), 1u);
+  EXPECT_LT(std::abs(m.planes[0].n_world.z()), std::cos(15.0 * M_PI / 180.0)) << "by default";
+  config.plane_fit_min_inliers = 5;
+  m = matchFeatures(tread_point, {}, Pose(), map, no_edges, config, sensor);
+  ASSERT_EQ(m.planes.size(), 1u);
+  EXPECT_GT(std::abs(m.planes[0].n_world.z()), std::cos(3.0 * M_PI / 180.0));
+  EXPECT_NEAR(m.planes[0].d_world, 0.0, 0.005) << "the tread's plane, z = 0";
+  // A point a riser higher (on the next tread, not in this map) finds no face.
+  const std::vector<Eigen::Vector3d> next_tread{{0.05, 0.1, 0.17}};
+  m = matchFeatures(next_tread, {}, Pose(), map, no_edges, config, sensor);
+  EXPECT_TRUE(m.planes.empty());
+  EXPECT_EQ(m.rejected[static_cast<std::size_t>(MatchReject::kNotPlanar)], 1);
 }
 
 }  // namespace
