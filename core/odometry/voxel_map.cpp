@@ -267,8 +267,6 @@ PlaneFit fitPlaneLargestFace(const Eigen::Vector3f* points, int count, double ma
                              const Eigen::Vector3f* query) {
   PlaneFit none;
   if (count < 3 || count > 32 || count < min_inliers) return none;
-  Eigen::Vector3d p[32];
-  for (int i = 0; i < count; ++i) p[i] = points[i].cast<double>();
   const auto fitMask = [&](std::uint32_t mask) {
     Eigen::Vector3f subset[32];
     int n = 0;
@@ -284,6 +282,14 @@ PlaneFit fitPlaneLargestFace(const Eigen::Vector3f* points, int count, double ma
     if (inliers != nullptr) *inliers = all;
     return whole;
   }
+  Eigen::Vector3d p[32];
+  for (int i = 0; i < count; ++i) p[i] = points[i].cast<double>();
+  const Eigen::Vector3d q =
+      query != nullptr ? Eigen::Vector3d(query->cast<double>()) : Eigen::Vector3d::Zero();
+  // With a query, a plane must pass within max_distance of it.
+  const auto reaches = [&](const Eigen::Vector3d& n, double d) {
+    return query == nullptr || std::abs(n.dot(q) - d) <= max_distance;
+  };
   // The face: of the planes through three points, the one with the most
   // points within half the tolerance (about the points' own noise; ties: the
   // smaller sum of their squared distances). Near a tread's edge a plane
@@ -314,10 +320,10 @@ PlaneFit fitPlaneLargestFace(const Eigen::Vector3f* points, int count, double ma
         if (norm < 1e-6) continue;  // (nearly) collinear: no plane
         const Eigen::Vector3d n = cross / norm;
         // The query's own face: not the next tread up or down the flight.
-        if (query != nullptr && std::abs(n.dot(query->cast<double>() - p[a])) > max_distance)
-          continue;
+        const double d = n.dot(p[a]);
+        if (!reaches(n, d)) continue;
         double sum = 0.0;
-        const std::uint32_t mask = maskWithin(n, n.dot(p[a]), &sum);
+        const std::uint32_t mask = maskWithin(n, d, &sum);
         const int k = __builtin_popcount(mask);
         if (k > best_count || (k == best_count && sum < best_sum)) {
           best_mask = mask;
@@ -328,14 +334,11 @@ PlaneFit fitPlaneLargestFace(const Eigen::Vector3f* points, int count, double ma
   if (best_count < std::max(min_inliers, 3)) return none;
   // Refit on the face's points, take its points again, refit.
   PlaneFit fit = fitMask(best_mask);
-  if (!fit.valid) return none;
-  if (query != nullptr && std::abs(fit.normal.dot(query->cast<double>()) - fit.d) > max_distance)
-    return none;
+  if (!fit.valid || !reaches(fit.normal, fit.d)) return none;
   const std::uint32_t again = maskWithin(fit.normal, fit.d, nullptr);
   if (again != best_mask && __builtin_popcount(again) >= min_inliers) {
     const PlaneFit refit = fitMask(again);
-    if (refit.valid && (query == nullptr || std::abs(refit.normal.dot(query->cast<double>()) -
-                                                     refit.d) <= max_distance)) {
+    if (refit.valid && reaches(refit.normal, refit.d)) {
       fit = refit;
       best_mask = again;
     }
